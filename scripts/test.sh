@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# The test command of the README: installs what the tests need on a fresh Debian machine with a
+# Rust toolchain, then runs every test of the workspace.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo test --workspace --all-targets --no-fail-fast
+# Doc tests are not part of --all-targets.
+cargo test --workspace --doc

@@ -1,0 +1,15 @@
+//! # jbearing-solvers
+//!
+//! The numerics of jbearing: dynamically loaded journal bearings with mass-conserving
+//! (Jakobsson–Floberg–Olsson) cavitation, after Yu & Sawicki (2002), the core seed paper.
+//!
+//! This crate is pure numerics: SI units in, typed results out, no files and no printing.
+//! Parameters, results and errors follow one pattern: `XxxParams` in, `XxxInfo` out, `XxxError`
+//! (a `thiserror` enum whose variants carry the numbers) when something fails. Progress of long
+//! runs reaches the caller through observer traits, never through a print.
+//!
+//! Modules
+//! - [`tridiagonal`]: the line kernels of the ADI sweeps: Thomas for Dirichlet lines and Yu &
+//!   Sawicki's modified Thomas for periodic (circumferential) lines.
+
+pub mod tridiagonal;
