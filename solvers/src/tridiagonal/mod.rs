@@ -75,15 +75,66 @@
 //!     x_i     = (c'_i − a_i x_{i+1} − e_i x_{m-1}) / d'_i          i = m-3 … 0
 //! ```
 //!
-//! Cost: about 2× plain Thomas in flops, one extra vector (e) of memory, no pivoting. Like
-//! Thomas it is stable without pivoting for diagonally dominant rows; for other rows every
-//! pivot is checked.
+//! ## How the code evaluates it (one division per row)
+//!
+//! Written as above, every row costs three divisions (l_i in the forward sweep, l in the
+//! last-row sweep, d'_i in the back substitution), and divisions sit on the critical path of a
+//! recurrence. The code therefore normalises each reduced row by its pivot once, as Thomas does:
+//!
+//! ```text
+//!     r_i = 1 / d'_i,   u_i = a_i r_i,   f_i = e_i r_i,   y_i = c'_i r_i
+//! ```
+//!
+//! so that l_i = b_i / d'_{i-1} disappears (l_i a_{i-1} = b_i u_{i-1}, l_i c'_{i-1} = b_i y_{i-1},
+//! l_i e_{i-1} = b_i f_{i-1}) and the sweeps read
+//!
+//! ```text
+//!     forward   d'_i = d_i − b_i u_{i-1}
+//!               y_i  = (c_i − b_i y_{i-1}) r_i
+//!               u_i  = a_i r_i,   f_i = −(b_i f_{i-1}) r_i            1 ≤ i < m-2
+//!               u_i  = 0,         f_i = (a_i − b_i f_{i-1}) r_i        i = m-2
+//!     last row  d* ← d* − A_j f_j,   c* ← c* − A_j y_j,   A_{j+1} = −A_j u_j (+ b_{m-1} at j+1 = m-2)
+//!     back      x_{m-1} = c* / d*,   x_i = (y_i − u_i x_{i+1}) − f_i x_{m-1}
+//! ```
+//!
+//! (row 0: d'_0 = d_0, u_0 = a_0 r_0, f_0 = b_0 r_0 (the corner), y_0 = c_0 r_0). The last-row
+//! sweep needs row j only once it is reduced, so it runs fused into the forward sweep. Per
+//! unknown this is plain Thomas plus the fill-in recurrence f, the three multiply-adds of the
+//! last row and one more multiply-add in the back substitution; the extra work is off the
+//! division's critical path. Memory: one vector (f) more than Thomas; y lives in the solution.
+//!
+//! Like Thomas the algorithm does not pivot. It is stable for diagonally dominant rows (the
+//! multipliers |u_i| < 1, so the fill-in f and the carried A_j decay geometrically); for other
+//! rows every pivot is checked.
+//!
+//! ## Errors instead of NaN
+//!
+//! Every pivot d'_i (and d*) is tested against the sum of the magnitudes of its row's original
+//! entries: |d'_i| ≤ 64 ε (|b_i| + |d_i| + |a_i|), or a non-finite pivot, is
+//! [`TridiagonalError::ZeroPivot`] naming the row. A non-finite right-hand side or an overflow
+//! can still produce a non-finite unknown with healthy pivots; the back substitution checks
+//! every unknown and reports the first one as [`TridiagonalError::NonFiniteSolution`]. On an
+//! error the contents of `x` are unspecified.
+//!
+//! ## Small periodic lines
 //!
 //! Sizes 1 and 2 of a periodic line are degenerate (the neighbours coincide): m = 1 solves
 //! (b₀ + d₀ + a₀) x₀ = c₀ and m = 2 solves the 2×2 system with the off-diagonal entries of each
-//! row summed. Both follow from the same wrap-around stencil and are handled exactly.
+//! row summed (row 0: d₀ x₀ + (a₀ + b₀) x₁ = c₀, row 1: (a₁ + b₁) x₀ + d₁ x₁ = c₁). Both are
+//! what the wrap-around stencil means on such a line (the discrete operator of a periodic
+//! coordinate with one or two nodes) and are solved exactly, with the same pivot checks.
+//!
+//! ## Many lines at once
+//!
+//! [`thomas_solve_interleaved`] and [`cyclic_thomas_solve_interleaved`] (module `batch`) solve
+//! many independent lines stored interleaved, vectorized across lines, with the same
+//! arithmetic as the single-line functions here (results agree bit for bit).
 
 use thiserror::Error;
+
+mod batch;
+
+pub use batch::{BatchWorkspace, LANES, cyclic_thomas_solve_interleaved, thomas_solve_interleaved};
 
 /// Why a line solve failed.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -101,11 +152,62 @@ pub enum TridiagonalError {
         /// Sum of the magnitudes of the row's original entries.
         scale: f64,
     },
+    /// The pivot of a row of one line of a batch vanished (or is not finite).
+    #[error(
+        "tridiagonal batch solve: pivot {pivot:e} of row {row} of line {line} vanishes against \
+         the row's scale {scale:e} (singular or not diagonally dominant line)"
+    )]
+    ZeroPivotInLine {
+        /// Line (0-based) of the batch; the first failing line is reported.
+        line: usize,
+        /// Row (0-based) within that line whose pivot vanished; the first one.
+        row: usize,
+        /// The pivot value after elimination.
+        pivot: f64,
+        /// Sum of the magnitudes of the row's original entries.
+        scale: f64,
+    },
+    /// All pivots were sound but an unknown came out non-finite (a non-finite right-hand side
+    /// or an overflow).
+    #[error("tridiagonal solve: unknown {row} is not finite ({value}) although every pivot was")]
+    NonFiniteSolution {
+        /// First row (0-based) whose unknown is not finite.
+        row: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// As [`TridiagonalError::NonFiniteSolution`], for one line of a batch.
+    #[error(
+        "tridiagonal batch solve: unknown {row} of line {line} is not finite ({value}) although \
+         every pivot was"
+    )]
+    NonFiniteSolutionInLine {
+        /// Line (0-based) of the batch; the first failing line is reported.
+        line: usize,
+        /// First row (0-based) of that line whose unknown is not finite.
+        row: usize,
+        /// Its value.
+        value: f64,
+    },
     /// The slices of a line do not have the same length.
     #[error(
         "tridiagonal solve: slice lengths differ (sub {sub}, diag {diag}, sup {sup}, rhs {rhs}, solution {x})"
     )]
     SizeMismatch {
+        sub: usize,
+        diag: usize,
+        sup: usize,
+        rhs: usize,
+        x: usize,
+    },
+    /// The slices of a batch do not all hold m × lines values (or m × lines overflows).
+    #[error(
+        "tridiagonal batch solve: {m} rows × {lines} lines need {m}·{lines} values per slice, got \
+         sub {sub}, diag {diag}, sup {sup}, rhs {rhs}, solution {x}"
+    )]
+    BatchSizeMismatch {
+        m: usize,
+        lines: usize,
         sub: usize,
         diag: usize,
         sup: usize,
@@ -118,15 +220,32 @@ pub enum TridiagonalError {
 }
 
 /// Relative size below which a pivot counts as vanished: all digits lost to cancellation.
-const PIVOT_RTOL: f64 = 64.0 * f64::EPSILON;
+pub(crate) const PIVOT_RTOL: f64 = 64.0 * f64::EPSILON;
+
+/// True when `pivot` is sound against the row scale. Written so that a NaN pivot fails (every
+/// comparison with NaN is false) and so that it vectorizes (no branch, no `is_finite` call).
+#[inline(always)]
+pub(crate) fn pivot_ok(pivot: f64, scale: f64) -> bool {
+    let a = pivot.abs();
+    (a > PIVOT_RTOL * scale) & (a < f64::INFINITY)
+}
 
 #[inline(always)]
 fn check_pivot(pivot: f64, row: usize, scale: f64) -> Result<(), TridiagonalError> {
-    // A NaN pivot fails `is_finite`; a vanished one fails the relative test.
-    if !pivot.is_finite() || pivot.abs() <= PIVOT_RTOL * scale {
+    if !pivot_ok(pivot, scale) {
         return Err(TridiagonalError::ZeroPivot { row, pivot, scale });
     }
     Ok(())
+}
+
+/// Finds the first non-finite unknown (called only when the sweep flagged one).
+#[cold]
+fn non_finite(x: &[f64]) -> TridiagonalError {
+    let row = x.iter().position(|v| !v.is_finite()).unwrap_or(0);
+    TridiagonalError::NonFiniteSolution {
+        row,
+        value: x.get(row).copied().unwrap_or(f64::NAN),
+    }
 }
 
 fn check_sizes(
@@ -158,7 +277,9 @@ fn check_sizes(
 /// (the only allocation) and never shrinks.
 #[derive(Debug, Clone, Default)]
 pub struct LineWorkspace {
-    pivots: Vec<f64>,
+    /// u_i = a_i / d'_i, the normalised super-diagonal.
+    upper: Vec<f64>,
+    /// f_i = e_i / d'_i, the normalised fill-in column (periodic lines only).
     fill: Vec<f64>,
 }
 
@@ -166,14 +287,14 @@ impl LineWorkspace {
     /// A workspace already sized for lines of `m` unknowns.
     pub fn with_len(m: usize) -> Self {
         Self {
-            pivots: vec![0.0; m],
+            upper: vec![0.0; m],
             fill: vec![0.0; m],
         }
     }
 
     fn ensure(&mut self, m: usize) {
-        if self.pivots.len() < m {
-            self.pivots.resize(m, 0.0);
+        if self.upper.len() < m {
+            self.upper.resize(m, 0.0);
             self.fill.resize(m, 0.0);
         }
     }
@@ -182,6 +303,8 @@ impl LineWorkspace {
 /// Solves a Dirichlet (non-periodic) tridiagonal line by the Thomas algorithm.
 ///
 /// `sub[0]` and `sup[m-1]` are ignored. The solution goes to `x`; the inputs are not modified.
+/// Every pivot d'_i = d_i − b_i u_{i-1} is checked (see the module docs); a non-finite unknown
+/// is reported, never returned.
 pub fn thomas_solve(
     sub: &[f64],
     diag: &[f64],
@@ -192,23 +315,28 @@ pub fn thomas_solve(
 ) -> Result<(), TridiagonalError> {
     let m = check_sizes(sub, diag, sup, rhs, x)?;
     work.ensure(m);
-    // cp[i] = a_i / d'_i (normalised super-diagonal), x[i] = c'_i / d'_i during the sweep.
-    let cp = &mut work.pivots[..m];
-    let scale0 = diag[0].abs() + if m > 1 { sup[0].abs() } else { 0.0 };
-    check_pivot(diag[0], 0, scale0)?;
-    let mut inv = 1.0 / diag[0];
-    cp[0] = if m > 1 { sup[0] * inv } else { 0.0 };
-    x[0] = rhs[0] * inv;
+    // u[i] = a_i / d'_i (normalised super-diagonal), x[i] = c'_i / d'_i during the sweep.
+    let u = &mut work.upper[..m];
+    let a0 = if m > 1 { sup[0] } else { 0.0 };
+    check_pivot(diag[0], 0, diag[0].abs() + a0.abs())?;
+    let r = 1.0 / diag[0];
+    u[0] = a0 * r;
+    x[0] = rhs[0] * r;
     for i in 1..m {
         let a = if i + 1 < m { sup[i] } else { 0.0 };
-        let pivot = diag[i] - sub[i] * cp[i - 1];
+        let pivot = diag[i] - sub[i] * u[i - 1];
         check_pivot(pivot, i, sub[i].abs() + diag[i].abs() + a.abs())?;
-        inv = 1.0 / pivot;
-        cp[i] = a * inv;
-        x[i] = (rhs[i] - sub[i] * x[i - 1]) * inv;
+        let r = 1.0 / pivot;
+        u[i] = a * r;
+        x[i] = (rhs[i] - sub[i] * x[i - 1]) * r;
     }
+    let mut finite = x[m - 1].is_finite();
     for i in (0..m - 1).rev() {
-        x[i] -= cp[i] * x[i + 1];
+        x[i] -= u[i] * x[i + 1];
+        finite &= x[i].is_finite();
+    }
+    if !finite {
+        return Err(non_finite(x));
     }
     Ok(())
 }
@@ -216,8 +344,8 @@ pub fn thomas_solve(
 /// Solves a periodic (cyclic) tridiagonal line by Yu & Sawicki's modified Thomas algorithm.
 ///
 /// `sub[0]` is the corner entry of row 0 (column m-1) and `sup[m-1]` the corner entry of row
-/// m-1 (column 0). The derivation is in the module documentation. The solution goes to `x`;
-/// the inputs are not modified.
+/// m-1 (column 0). The derivation and the evaluation order are in the module documentation.
+/// The solution goes to `x`; the inputs are not modified.
 pub fn cyclic_thomas_solve(
     sub: &[f64],
     diag: &[f64],
@@ -232,57 +360,98 @@ pub fn cyclic_thomas_solve(
             let pivot = sub[0] + diag[0] + sup[0];
             check_pivot(pivot, 0, sub[0].abs() + diag[0].abs() + sup[0].abs())?;
             x[0] = rhs[0] / pivot;
-            return Ok(());
         }
         2 => {
             // Row 0: d0 x0 + (a0 + b0) x1 = c0 ; row 1: (a1 + b1) x0 + d1 x1 = c1.
             let (p, q) = (diag[0], sup[0] + sub[0]);
             let (r, s) = (sup[1] + sub[1], diag[1]);
-            check_pivot(p, 0, p.abs() + q.abs())?;
+            check_pivot(p, 0, diag[0].abs() + sup[0].abs() + sub[0].abs())?;
             let l = r / p;
             let pivot = s - l * q;
-            check_pivot(pivot, 1, r.abs() + s.abs())?;
+            check_pivot(pivot, 1, sub[1].abs() + diag[1].abs() + sup[1].abs())?;
             x[1] = (rhs[1] - l * rhs[0]) / pivot;
             x[0] = (rhs[0] - q * x[1]) / p;
-            return Ok(());
         }
-        _ => {}
+        _ => {
+            work.ensure(m);
+            return cyclic_sweeps(
+                sub,
+                diag,
+                sup,
+                rhs,
+                x,
+                &mut work.upper[..m],
+                &mut work.fill[..m],
+            );
+        }
     }
-    work.ensure(m);
-    let dp = &mut work.pivots[..m]; // d'_i
-    let e = &mut work.fill[..m]; // fill-in column m-1 of rows 0 … m-2
+    if x[..m].iter().any(|v| !v.is_finite()) {
+        return Err(non_finite(x));
+    }
+    Ok(())
+}
+
+/// The m ≥ 3 periodic solve of [`cyclic_thomas_solve`]; `u`, `f` have length m.
+#[inline(always)]
+fn cyclic_sweeps(
+    sub: &[f64],
+    diag: &[f64],
+    sup: &[f64],
+    rhs: &[f64],
+    x: &mut [f64],
+    u: &mut [f64],
+    f: &mut [f64],
+) -> Result<(), TridiagonalError> {
+    let m = diag.len();
     let last = m - 1;
+    let (sub, sup, rhs, x, u, f) = (
+        &sub[..m],
+        &sup[..m],
+        &rhs[..m],
+        &mut x[..m],
+        &mut u[..m],
+        &mut f[..m],
+    );
 
-    // Forward elimination of the sub-diagonal in rows 1 … m-2; x holds c'.
+    // Row 0: pivot d_0; its fill-in entry is the corner b_0.
     check_pivot(diag[0], 0, sub[0].abs() + diag[0].abs() + sup[0].abs())?;
-    dp[0] = diag[0];
-    x[0] = rhs[0];
-    e[0] = sub[0];
-    for i in 1..last {
-        let l = sub[i] / dp[i - 1];
-        let pivot = diag[i] - l * sup[i - 1];
-        check_pivot(pivot, i, sub[i].abs() + diag[i].abs() + sup[i].abs())?;
-        dp[i] = pivot;
-        x[i] = rhs[i] - l * x[i - 1];
-        e[i] = -l * e[i - 1];
-    }
-    // Row m-2: its super-diagonal entry lies in the fill-in column.
-    e[last - 1] += sup[last - 1];
+    let r = 1.0 / diag[0];
+    u[0] = sup[0] * r;
+    f[0] = sub[0] * r;
+    x[0] = rhs[0] * r;
+    // Last row, fused: remove its column-0 entry A_0 = a_{m-1} with row 0.
+    let mut carried = sup[last];
+    let mut d_star = diag[last] - carried * f[0];
+    let mut c_star = rhs[last] - carried * x[0];
+    carried = -carried * u[0];
 
-    // Elimination along the last row.
-    let mut carried = sup[last]; // entry in column j, starting at column 0
-    let mut d_star = diag[last];
-    let mut c_star = rhs[last];
-    for j in 0..last - 1 {
-        let l = carried / dp[j];
-        d_star -= l * e[j];
-        c_star -= l * x[j];
-        carried = -l * sup[j];
+    // Rows 1 … m-3.
+    for i in 1..last - 1 {
+        let b = sub[i];
+        let pivot = diag[i] - b * u[i - 1];
+        check_pivot(pivot, i, b.abs() + diag[i].abs() + sup[i].abs())?;
+        let r = 1.0 / pivot;
+        u[i] = sup[i] * r;
+        f[i] = -(b * f[i - 1]) * r;
+        x[i] = (rhs[i] - b * x[i - 1]) * r;
+        d_star -= carried * f[i];
+        c_star -= carried * x[i];
+        carried = -carried * u[i];
     }
-    carried += sub[last]; // column m-2 also holds b_{m-1}
-    let l = carried / dp[last - 1];
-    d_star -= l * e[last - 1];
-    c_star -= l * x[last - 1];
+
+    // Row m-2: its super-diagonal entry lies in the fill-in column m-1.
+    let i = last - 1;
+    let b = sub[i];
+    let pivot = diag[i] - b * u[i - 1];
+    check_pivot(pivot, i, b.abs() + diag[i].abs() + sup[i].abs())?;
+    let r = 1.0 / pivot;
+    u[i] = 0.0;
+    f[i] = (sup[i] - b * f[i - 1]) * r;
+    x[i] = (rhs[i] - b * x[i - 1]) * r;
+    // The last row's column m-2 holds b_{m-1} besides the carried entry.
+    carried += sub[last];
+    d_star -= carried * f[i];
+    c_star -= carried * x[i];
     check_pivot(
         d_star,
         last,
@@ -292,12 +461,20 @@ pub fn cyclic_thomas_solve(
     // Back substitution.
     let x_last = c_star / d_star;
     x[last] = x_last;
-    x[last - 1] = (x[last - 1] - e[last - 1] * x_last) / dp[last - 1];
+    x[i] -= f[i] * x_last;
+    let mut finite = x_last.is_finite() & x[i].is_finite();
     for i in (0..last - 1).rev() {
-        x[i] = (x[i] - sup[i] * x[i + 1] - e[i] * x_last) / dp[i];
+        x[i] = (x[i] - u[i] * x[i + 1]) - f[i] * x_last;
+        finite &= x[i].is_finite();
+    }
+    if !finite {
+        return Err(non_finite(x));
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod proptests;
 
 #[cfg(test)]
 mod tests {
