@@ -474,7 +474,7 @@ fn cyclic_sweeps(
 }
 
 #[cfg(test)]
-mod proptests;
+mod reference_tests;
 
 #[cfg(test)]
 mod tests {
