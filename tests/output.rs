@@ -84,4 +84,8 @@ fn dump_fixture_for_manual_checks() {
     std::fs::create_dir_all(&dir).unwrap();
     let (r, _p) = fixture_file(&dir, "fixture");
     std::fs::write(dir.join("fixture.expected"), expected_values(&r)).unwrap();
+    jbearing::output::PlotWriter::default()
+        .write(&r, &dir)
+        .unwrap();
+    CsvSummaryWriter.write(&r, &dir).unwrap();
 }

@@ -128,7 +128,11 @@ impl FileWriter {
 
     fn write_report(&mut self, file: &h5::File, r: &CaseReport, surface: bool) -> Res<()> {
         let run = &r.run;
-        self.str_attr(file, "title", &format!("jbearing results for case '{}'", r.case_name))?;
+        self.str_attr(
+            file,
+            "title",
+            &format!("jbearing results for case '{}'", r.case_name),
+        )?;
         self.str_attr(file, "case_name", &r.case_name)?;
         self.str_attr(file, "case_text", &r.case_text)?;
         let case_path = r
@@ -154,10 +158,22 @@ impl FileWriter {
         let g = r.geometry;
         self.scalar(file, "radius", g.radius, "m", "bearing radius")?;
         self.scalar(file, "length", g.length, "m", "bearing length")?;
-        self.scalar(file, "radial_clearance", g.radial_clearance, "m", "radial clearance")?;
+        self.scalar(
+            file,
+            "radial_clearance",
+            g.radial_clearance,
+            "m",
+            "radial clearance",
+        )?;
 
-        let params = file.create_group("parameters").map_err(self.err("group parameters"))?;
-        self.str_attr(&params, "description", "resolved case parameters (defaults filled in)")?;
+        let params = file
+            .create_group("parameters")
+            .map_err(self.err("group parameters"))?;
+        self.str_attr(
+            &params,
+            "description",
+            "resolved case parameters (defaults filled in)",
+        )?;
         for p in &r.parameters {
             let ctx = format!("parameter {}", p.key);
             let ds = match &p.value {
@@ -214,7 +230,9 @@ impl FileWriter {
 
     fn write_method(&mut self, file: &h5::File, m: &MethodResult) -> Res<()> {
         let name = m.method.as_str();
-        let g = file.create_group(name).map_err(self.err(format!("group {name}")))?;
+        let g = file
+            .create_group(name)
+            .map_err(self.err(format!("group {name}")))?;
         self.str_attr(&g, "method", name)?;
         self.str_attr(&g, "description", m.method.description())?;
         for (k, v) in &m.solver_info {
@@ -273,7 +291,13 @@ impl FileWriter {
             "rad",
             "circumferential angle from +x towards +y (bearing frame)",
         )?;
-        let z = self.coordinate(&g, "z", &f.z, "m", "axial position from the bearing mid-plane")?;
+        let z = self.coordinate(
+            &g,
+            "z",
+            &f.z,
+            "m",
+            "axial position from the bearing mid-plane",
+        )?;
         let (nt, nth, nz) = (f.time.len(), f.theta.len(), f.z.len());
         for fld in &f.fields {
             let ctx = format!("{method}/fields/{}", fld.name);
@@ -296,7 +320,9 @@ impl FileWriter {
     }
 
     fn write_summary(&mut self, file: &h5::File, r: &CaseReport) -> Res<()> {
-        let g = file.create_group("summary").map_err(self.err("group summary"))?;
+        let g = file
+            .create_group("summary")
+            .map_err(self.err("group summary"))?;
         self.str_attr(
             &g,
             "description",

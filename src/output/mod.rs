@@ -43,7 +43,7 @@ pub mod vtkhdf;
 
 pub use self::csv_summary::CsvSummaryWriter;
 pub use self::hdf5::Hdf5Writer;
-// pub use self::plots::PlotWriter;
+pub use self::plots::PlotWriter;
 
 use std::collections::HashSet;
 use std::fmt;
@@ -475,9 +475,15 @@ where
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "output".into());
     // The temporary file is hidden and carries the final name, so a crashed run leaves an
-    // obvious `.CASE.h5.XXXXXX.tmp` rather than a plausible-looking result.
+    // obvious `.CASE.h5.XXXXXX.tmp.h5` rather than a plausible-looking result.
+    // Keep the extension last: some encoders (the PNG one) choose the format by extension.
+    let suffix = match target.extension() {
+        Some(ext) => format!(".tmp.{}", ext.to_string_lossy()),
+        None => ".tmp".to_string(),
+    };
+    let prefix = format!(".{stem}.");
     let mut builder = tempfile::Builder::new();
-    builder.prefix(&format!(".{stem}.")).suffix(".tmp");
+    builder.prefix(&prefix).suffix(&suffix);
     // tempfile creates 0600 files; results are ordinary files (0644 less the umask).
     #[cfg(unix)]
     {
@@ -532,7 +538,9 @@ impl CaseReport {
             ("radial_clearance", g.radial_clearance),
         ] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(bad(format!("geometry {name} = {v} m must be finite and > 0")));
+                return Err(bad(format!(
+                    "geometry {name} = {v} m must be finite and > 0"
+                )));
             }
         }
         let mut keys = HashSet::new();
@@ -629,7 +637,10 @@ fn validate_method(m: &MethodResult) -> Result<(), String> {
     for s in &m.series {
         check_name(&s.name)?;
         if COORDINATE_NAMES.contains(&s.name.as_str()) {
-            return Err(format!("series name '{}' is reserved for a coordinate", s.name));
+            return Err(format!(
+                "series name '{}' is reserved for a coordinate",
+                s.name
+            ));
         }
         if !names.insert(s.name.as_str()) {
             return Err(format!("series '{}' appears twice", s.name));
@@ -675,7 +686,10 @@ fn validate_method(m: &MethodResult) -> Result<(), String> {
         for fld in &f.fields {
             check_name(&fld.name)?;
             if COORDINATE_NAMES.contains(&fld.name.as_str()) {
-                return Err(format!("field name '{}' is reserved for a coordinate", fld.name));
+                return Err(format!(
+                    "field name '{}' is reserved for a coordinate",
+                    fld.name
+                ));
             }
             if !fnames.insert(fld.name.as_str()) {
                 return Err(format!("field '{}' appears twice", fld.name));
