@@ -7,9 +7,11 @@ mod common;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::OnceLock;
+use std::time::Instant;
 
 use jbearing::output::{
-    CaseReport, CsvSummaryWriter, Hdf5Writer, Method, OutputError, OutputWriter, names,
+    CaseReport, CsvSummaryWriter, Hdf5Writer, Method, OutputError, OutputWriter, PlotWriter,
     write_atomically,
 };
 
@@ -78,14 +80,262 @@ fn fixture_file(dir: &Path, name: &str) -> (CaseReport, PathBuf) {
     (report, written[0].clone())
 }
 
+/// A virtualenv with examples/python/requirements.txt, created once per requirements content
+/// under the target directory (a clean clone gets a fresh one; reruns reuse it). The Python
+/// interpreter is `python3` from PATH, or `$JBEARING_PYTHON`.
+fn python_env() -> PathBuf {
+    static VENV: OnceLock<PathBuf> = OnceLock::new();
+    VENV.get_or_init(|| {
+        let start = Instant::now();
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let requirements = root.join("examples/python/requirements.txt");
+        let wanted = std::fs::read_to_string(&requirements).expect("requirements.txt");
+        let venv = Path::new(env!("CARGO_TARGET_TMPDIR")).join("python-venv");
+        let stamp = venv.join("jbearing-requirements.txt");
+        let python = venv.join("bin/python");
+        if std::fs::read_to_string(&stamp).ok().as_deref() == Some(wanted.as_str())
+            && python.exists()
+        {
+            return python;
+        }
+        let _ = std::fs::remove_dir_all(&venv);
+        let base = std::env::var("JBEARING_PYTHON").unwrap_or_else(|_| "python3".into());
+        run(
+            Command::new(&base).args(["-m", "venv"]).arg(&venv),
+            "python3 -m venv",
+        );
+        run(
+            Command::new(&python)
+                .args([
+                    "-m",
+                    "pip",
+                    "install",
+                    "--quiet",
+                    "--disable-pip-version-check",
+                    "-r",
+                ])
+                .arg(&requirements),
+            "pip install -r examples/python/requirements.txt",
+        );
+        std::fs::write(&stamp, wanted).unwrap();
+        eprintln!(
+            "python virtualenv created in {:.1} s: {}",
+            start.elapsed().as_secs_f64(),
+            venv.display()
+        );
+        python
+    })
+    .clone()
+}
+
+fn run(cmd: &mut Command, what: &str) -> String {
+    let out = cmd
+        .output()
+        .unwrap_or_else(|e| panic!("{what}: cannot start: {e} (run scripts/deps.sh)"));
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{what} failed ({}):\n--- stdout\n{stdout}\n--- stderr\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    stdout
+}
+
 #[test]
-fn dump_fixture_for_manual_checks() {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("manual");
-    std::fs::create_dir_all(&dir).unwrap();
-    let (r, _p) = fixture_file(&dir, "fixture");
-    std::fs::write(dir.join("fixture.expected"), expected_values(&r)).unwrap();
-    jbearing::output::PlotWriter::default()
-        .write(&r, &dir)
-        .unwrap();
-    CsvSummaryWriter.write(&r, &dir).unwrap();
+fn hdf5_file_reads_back_in_xarray_and_pyvista() {
+    let python = python_env();
+    let dir = tempfile::tempdir().unwrap();
+    let (report, path) = fixture_file(dir.path(), "short_bearing_fixture");
+    let expected = dir.path().join("expected.txt");
+    std::fs::write(&expected, expected_values(&report)).unwrap();
+    let checker = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_output.py");
+    let start = Instant::now();
+    let out = run(
+        Command::new(&python)
+            .arg(&checker)
+            .arg(&path)
+            .arg(&expected),
+        "tests/python/check_output.py",
+    );
+    eprintln!("checker ran in {:.1} s", start.elapsed().as_secs_f64());
+    assert!(out.contains("all checks passed"), "{out}");
+}
+
+#[test]
+fn python_example_plots_from_the_file() {
+    let python = python_env();
+    let dir = tempfile::tempdir().unwrap();
+    let (_, path) = fixture_file(dir.path(), "example");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/python/plot_case.py");
+    let out = run(
+        Command::new(&python)
+            .args(["-W", "error"])
+            .arg(&script)
+            .arg(&path)
+            .arg("--out")
+            .arg(dir.path()),
+        "examples/python/plot_case.py",
+    );
+    for png in ["example_series.png", "example_pressure.png"] {
+        let bytes = std::fs::read(dir.path().join(png)).unwrap_or_else(|e| panic!("{png}: {e}"));
+        assert!(
+            bytes.starts_with(b"\x89PNG\r\n\x1a\n"),
+            "{png} is not a PNG"
+        );
+    }
+    // The example prints the surface it read through pyvista: one point per (θ, z) node.
+    let points = common::N_THETA * common::N_Z;
+    assert!(out.contains(&format!("surface: {points} points")), "{out}");
+}
+
+/// Width and height from a PNG's IHDR chunk.
+fn png_size(path: &Path) -> (u32, u32) {
+    let b = std::fs::read(path).unwrap();
+    assert!(
+        b.starts_with(b"\x89PNG\r\n\x1a\n"),
+        "{} is not a PNG",
+        path.display()
+    );
+    let be = |i: usize| u32::from_be_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]]);
+    (be(16), be(20))
+}
+
+#[test]
+fn plots_and_csv_summary_are_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = common::report("plots");
+    let writer = PlotWriter::default();
+    let paths = writer.write(&report, dir.path()).unwrap();
+    assert_eq!(paths, PlotWriter::file_paths(&report, dir.path()).to_vec());
+    assert_eq!(png_size(&paths[0]), writer.cycle_size);
+    assert_eq!(png_size(&paths[1]), (writer.orbit_size, writer.orbit_size));
+
+    let csv_paths = CsvSummaryWriter.write(&report, dir.path()).unwrap();
+    let mut rdr = csv::Reader::from_path(&csv_paths[0]).unwrap();
+    let rows: Vec<csv::StringRecord> = rdr.records().map(|r| r.unwrap()).collect();
+    assert_eq!(rows.len(), report.summary.len());
+    for (row, want) in rows.iter().zip(&report.summary) {
+        assert_eq!(&row[0], want.name);
+        assert_eq!(row[3].parse::<f64>().ok(), want.rigorous);
+        assert_eq!(row[4].parse::<f64>().ok(), want.mobility);
+    }
+    // The fixture's mobility h_min is the closed form at 0.9 ε: h = c (1 − 0.9 ε) against
+    // c (1 − ε), a positive deviation that the CSV states in percent.
+    let dev: f64 = rows[0][5].parse().unwrap();
+    let (r, m) = (
+        report.summary[0].rigorous.unwrap(),
+        report.summary[0].mobility.unwrap(),
+    );
+    assert!((dev - 100.0 * (m - r) / r).abs() < 1e-9 && dev > 0.0);
+    assert_eq!(&rows[3][4], "", "a value a method lacks is an empty cell");
+
+    // Only the finished files are in the directory: no temporaries left behind.
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["plots_cycle.png", "plots_orbit.png", "plots_summary.csv"]
+    );
+}
+
+#[test]
+fn failed_write_leaves_no_file_and_keeps_the_old_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("case.h5");
+    std::fs::write(&target, b"previous result").unwrap();
+    let err = write_atomically(&target, |tmp| {
+        std::fs::write(tmp, b"half a file").unwrap();
+        Err(OutputError::InvalidReport {
+            case: "case".into(),
+            what: "simulated failure half-way".into(),
+        })
+    })
+    .unwrap_err();
+    assert!(err.to_string().contains("simulated failure"), "{err}");
+    assert_eq!(std::fs::read(&target).unwrap(), b"previous result");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        1,
+        "temporary file removed"
+    );
+
+    // An HDF5 write that fails inside the library (a series name HDF5 accepts twice is
+    // impossible after validation, so use a directory that vanishes) leaves nothing either.
+    let gone = dir.path().join("gone");
+    let err = Hdf5Writer::new()
+        .write(&common::report("x"), &gone)
+        .unwrap_err();
+    assert!(matches!(err, OutputError::Io { .. }), "{err}");
+    assert!(!gone.exists());
+}
+
+#[test]
+fn invalid_reports_are_rejected_with_the_place_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: Vec<(Box<dyn Fn(&mut CaseReport)>, &str)> = vec![
+        (
+            Box::new(|r| r.methods[0].series[2].values.pop().map(|_| ()).unwrap()),
+            "rigorous: series 'feed_pressure' has 72 values for 73 time samples",
+        ),
+        (
+            Box::new(|r| r.methods[1].series[6].values[5] = f64::NAN),
+            "mobility: min_film_thickness[5] = NaN is not finite",
+        ),
+        (
+            Box::new(|r| r.methods[0].time[3] = r.methods[0].time[2]),
+            "rigorous: time must increase strictly: time[3]",
+        ),
+        (
+            Box::new(|r| r.methods[0].fields.as_mut().unwrap().theta[0] = -0.1),
+            "theta must lie in [0, 2π)",
+        ),
+        (
+            Box::new(|r| r.methods[0].series[0].name = "load x".into()),
+            "name 'load x' must start with a letter",
+        ),
+        (
+            Box::new(|r| r.geometry.radial_clearance = 0.0),
+            "geometry radial_clearance = 0 m must be finite and > 0",
+        ),
+        (
+            Box::new(|r| r.methods[1].method = Method::Rigorous),
+            "method rigorous appears twice",
+        ),
+    ];
+    for (spoil, message) in cases {
+        let mut r = common::report("bad");
+        spoil(&mut r);
+        let err = Hdf5Writer::new().write(&r, dir.path()).unwrap_err();
+        assert!(
+            matches!(err, OutputError::InvalidReport { .. }) && err.to_string().contains(message),
+            "expected '{message}', got '{err}'"
+        );
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn writers_behind_one_trait() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = common::report("all");
+    let writers: Vec<Box<dyn OutputWriter>> = vec![
+        Box::new(Hdf5Writer::new()),
+        Box::new(PlotWriter::default()),
+        Box::new(CsvSummaryWriter),
+    ];
+    let mut written = Vec::new();
+    for w in &writers {
+        written.extend(w.write(&report, dir.path()).unwrap());
+    }
+    assert_eq!(written.len(), 4);
+    assert!(written.iter().all(|p| p.exists()));
+    // A second run over the same directory replaces the files (rename over the old ones).
+    for w in &writers {
+        w.write(&report, dir.path()).unwrap();
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 4);
 }
