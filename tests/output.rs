@@ -276,7 +276,8 @@ fn failed_write_leaves_no_file_and_keeps_the_old_one() {
 #[test]
 fn invalid_reports_are_rejected_with_the_place_named() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: Vec<(Box<dyn Fn(&mut CaseReport)>, &str)> = vec![
+    type Spoil = Box<dyn Fn(&mut CaseReport)>;
+    let cases: Vec<(Spoil, &str)> = vec![
         (
             Box::new(|r| r.methods[0].series[2].values.pop().map(|_| ()).unwrap()),
             "rigorous: series 'feed_pressure' has 72 values for 73 time samples",

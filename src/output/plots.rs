@@ -102,6 +102,15 @@ fn method_color(m: Method) -> RGBColor {
     }
 }
 
+/// A panel of the cycle figure: title, y label, the (series name, legend label) pairs, and
+/// whether the series are inputs shared by the methods (drawn once).
+type PanelSpec = (
+    &'static str,
+    &'static str,
+    Vec<(&'static str, &'static str)>,
+    bool,
+);
+
 /// One curve of a panel.
 struct Curve {
     label: String,
@@ -211,7 +220,7 @@ fn draw_cycle(r: &CaseReport, path: &Path, size: (u32, u32)) -> Result<(), Strin
         .titled(&title, (FAMILY, 30).into_font())
         .map_err(|e| e.to_string())?;
     let panels = body.split_evenly((3, 2));
-    let specs: [(&str, &str, Vec<(&str, &str)>, bool); 6] = [
+    let specs: [PanelSpec; 6] = [
         (
             "(a) Load components",
             "load",
@@ -375,8 +384,6 @@ fn format_tick(v: f64) -> String {
         format!("{v:.0}")
     } else if a >= 10.0 {
         format!("{v:.1}")
-    } else if a >= 1.0 {
-        format!("{v:.2}")
     } else if a >= 0.1 {
         format!("{v:.2}")
     } else {
