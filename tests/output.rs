@@ -12,7 +12,7 @@ use std::time::Instant;
 
 use jbearing::output::{
     CaseReport, CsvSummaryWriter, Hdf5Writer, Method, OutputError, OutputWriter, PlotWriter,
-    write_atomically,
+    Reduction, SummaryRow, standard_writers, write_atomically,
 };
 
 /// Values the checker compares with what it reads, one line each: `key v1 v2 …`. f64 `Display`
@@ -323,11 +323,11 @@ fn invalid_reports_are_rejected_with_the_place_named() {
 fn writers_behind_one_trait() {
     let dir = tempfile::tempdir().unwrap();
     let report = common::report("all");
-    let writers: Vec<Box<dyn OutputWriter>> = vec![
-        Box::new(Hdf5Writer::new()),
-        Box::new(PlotWriter::default()),
-        Box::new(CsvSummaryWriter),
-    ];
+    let writers = standard_writers();
+    assert_eq!(
+        writers.iter().map(|w| w.name()).collect::<Vec<_>>(),
+        ["hdf5", "plots", "csv-summary"]
+    );
     let mut written = Vec::new();
     for w in &writers {
         written.extend(w.write(&report, dir.path()).unwrap());
@@ -339,4 +339,63 @@ fn writers_behind_one_trait() {
         w.write(&report, dir.path()).unwrap();
     }
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 4);
+}
+
+#[test]
+fn batch_threads_write_cases_in_parallel() {
+    // Batch runs write several cases at once; the HDF5 library is serialised behind one lock
+    // (hdf5-metno's, which the dimension-scale calls take too). Every file must come out whole.
+    let dir = tempfile::tempdir().unwrap();
+    std::thread::scope(|s| {
+        for k in 0..4 {
+            let dir = dir.path();
+            s.spawn(move || {
+                for w in standard_writers() {
+                    w.write(&common::report(&format!("case{k}")), dir).unwrap();
+                }
+            });
+        }
+    });
+    for k in 0..4 {
+        let f = hdf5_metno::File::open(dir.path().join(format!("case{k}.h5"))).unwrap();
+        let p = f.dataset("rigorous/fields/pressure").unwrap();
+        assert_eq!(
+            p.shape(),
+            [common::N_INSTANTS, common::N_THETA, common::N_Z]
+        );
+        let back: Vec<f64> = f
+            .dataset("rigorous/min_film_thickness")
+            .unwrap()
+            .read_raw()
+            .unwrap();
+        let want = &common::report("x").methods[0]
+            .series(jbearing::output::names::MIN_FILM_THICKNESS)
+            .unwrap()
+            .values
+            .clone();
+        assert_eq!(&back, want);
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 16);
+}
+
+#[test]
+fn cycle_mean_is_time_weighted() {
+    // f(t) = 2 + 3 t on [0, 1] has mean 3.5. The trapezoidal rule is exact for a linear f on
+    // any sampling, while the plain average of these clustered samples would be 2.78.
+    let mut m = common::report("mean").methods.remove(1);
+    m.time = vec![0.0, 0.05, 0.1, 0.15, 1.0];
+    m.crank_angle = m.time.iter().map(|t| 360.0 * t).collect();
+    m.series = vec![jbearing::output::Series::new(
+        "power_loss",
+        "power loss",
+        "W",
+        m.time.iter().map(|t| 2.0 + 3.0 * t).collect(),
+    )];
+    assert!((m.reduce("power_loss", Reduction::Mean).unwrap() - 3.5).abs() < 1e-14);
+    assert_eq!(m.reduce("power_loss", Reduction::Min), Some(2.0));
+    assert_eq!(m.reduce("power_loss", Reduction::Max), Some(5.0));
+    assert_eq!(m.reduce("absent", Reduction::Max), None);
+    let row = SummaryRow::from_series(&[m], "power_loss", Reduction::Mean, "p", "mean power");
+    assert_eq!((row.units.as_str(), row.rigorous), ("W", None));
+    assert!((row.mobility.unwrap() - 3.5).abs() < 1e-14);
 }

@@ -57,10 +57,16 @@ unsafe extern "C" {
 }
 
 /// Writes `CASE.h5` (see the module documentation for the layout).
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct Hdf5Writer {
-    /// Also write the `VTKHDF` surface group (default true through [`Hdf5Writer::new`]).
+    /// Also write the `VTKHDF` surface group (default: true).
     pub vtkhdf_surface: bool,
+}
+
+impl Default for Hdf5Writer {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 impl Hdf5Writer {

@@ -334,6 +334,46 @@ impl MethodResult {
     pub fn series(&self, name: &str) -> Option<&Series> {
         self.series.iter().find(|s| s.name == name)
     }
+
+    /// A cycle figure of the series `name`: its minimum, maximum, or time mean. The mean is
+    /// the trapezoidal integral over the stored time span divided by that span, so that
+    /// non-uniform sampling (an adaptive integrator's steps) is weighted correctly; a single
+    /// sample is its own mean. `None` if the series is absent.
+    pub fn reduce(&self, name: &str, how: Reduction) -> Option<f64> {
+        let v = &self.series(name)?.values;
+        if v.is_empty() {
+            return None;
+        }
+        Some(match how {
+            Reduction::Min => v.iter().copied().fold(f64::INFINITY, f64::min),
+            Reduction::Max => v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            Reduction::Mean => {
+                let t = &self.time;
+                let span = t[t.len() - 1] - t[0];
+                if v.len() < 2 || span <= 0.0 {
+                    v[0]
+                } else {
+                    let integral: f64 = t
+                        .windows(2)
+                        .zip(v.windows(2))
+                        .map(|(tw, vw)| 0.5 * (vw[0] + vw[1]) * (tw[1] - tw[0]))
+                        .sum();
+                    integral / span
+                }
+            }
+        })
+    }
+}
+
+/// How a series is reduced to one cycle figure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reduction {
+    /// Smallest value (e.g. the cycle minimum of h_min).
+    Min,
+    /// Largest value (e.g. peak pressure, maximum ε).
+    Max,
+    /// Time mean over the stored span (trapezoidal rule).
+    Mean,
 }
 
 /// One row of the summary table: a cycle figure for each method.
@@ -357,6 +397,35 @@ impl SummaryRow {
         match method {
             Method::Rigorous => self.rigorous,
             Method::Mobility => self.mobility,
+        }
+    }
+
+    /// A row from the series `series` of each method in `methods`, reduced by `how`; units
+    /// are the series' units. Methods without the series get `None`.
+    pub fn from_series(
+        methods: &[MethodResult],
+        series: &str,
+        how: Reduction,
+        name: &str,
+        long_name: &str,
+    ) -> Self {
+        let of = |m: Method| {
+            methods
+                .iter()
+                .find(|r| r.method == m)
+                .and_then(|r| r.reduce(series, how))
+        };
+        let units = methods
+            .iter()
+            .find_map(|r| r.series(series))
+            .map(|s| s.units.clone())
+            .unwrap_or_default();
+        Self {
+            name: name.into(),
+            long_name: long_name.into(),
+            units,
+            rigorous: of(Method::Rigorous),
+            mobility: of(Method::Mobility),
         }
     }
 
@@ -455,6 +524,15 @@ pub trait OutputWriter: Send + Sync {
     /// Write the report's files into `dir` (which must exist), named after
     /// [`CaseReport::case_name`]; returns the paths written.
     fn write(&self, report: &CaseReport, dir: &Path) -> Result<Vec<PathBuf>, OutputError>;
+}
+
+/// The writers `jbearing run` uses: HDF5 (with the VTKHDF surface), PNG plots, CSV summary.
+pub fn standard_writers() -> Vec<Box<dyn OutputWriter>> {
+    vec![
+        Box::new(Hdf5Writer::new()),
+        Box::new(PlotWriter::default()),
+        Box::new(CsvSummaryWriter),
+    ]
 }
 
 /// Runs `write` on a fresh temporary path in the directory of `target` and renames the result to

@@ -24,7 +24,7 @@ use std::f64::consts::{PI, TAU};
 
 use jbearing::output::{
     CaseReport, Field, FieldSnapshots, Geometry, Method, MethodResult, Parameter, ParameterValue,
-    RunInfo, Series, SummaryRow, names,
+    Reduction, RunInfo, Series, SummaryRow, names,
 };
 use ndarray::Array3;
 
@@ -188,63 +188,32 @@ fn method_result(method: Method, scale: f64, with_fields: bool) -> MethodResult 
     }
 }
 
-fn summary_row(
-    name: &str,
-    long: &str,
-    units: &str,
-    r: &MethodResult,
-    m: &MethodResult,
-    series: &str,
-    min: bool,
-) -> SummaryRow {
-    let pick = |x: &MethodResult| {
-        let v = &x.series(series).expect("fixture series").values;
-        if min {
-            v.iter().copied().fold(f64::INFINITY, f64::min)
-        } else {
-            v.iter().sum::<f64>() / v.len() as f64
-        }
-    };
-    SummaryRow {
-        name: name.into(),
-        long_name: long.into(),
-        units: units.into(),
-        rigorous: Some(pick(r)),
-        mobility: Some(pick(m)),
-    }
-}
-
 /// The fixture report (see the module documentation).
 pub fn report(case_name: &str) -> CaseReport {
     let rig = method_result(Method::Rigorous, 1.0, true);
     let mob = method_result(Method::Mobility, 0.9, false);
+    let both = [rig.clone(), mob.clone()];
     let summary = vec![
-        summary_row(
+        SummaryRow::from_series(
+            &both,
+            names::MIN_FILM_THICKNESS,
+            Reduction::Min,
             "min_film_thickness_min",
             "cycle minimum of h_min",
-            "m",
-            &rig,
-            &mob,
-            names::MIN_FILM_THICKNESS,
-            true,
         ),
-        summary_row(
+        SummaryRow::from_series(
+            &both,
+            names::SUPPLY_FLOW,
+            Reduction::Mean,
             "supply_flow_mean",
             "cycle mean supply flow",
-            "m3 s-1",
-            &rig,
-            &mob,
-            names::SUPPLY_FLOW,
-            false,
         ),
-        summary_row(
+        SummaryRow::from_series(
+            &both,
+            names::POWER_LOSS,
+            Reduction::Mean,
             "power_loss_mean",
             "cycle mean power loss",
-            "W",
-            &rig,
-            &mob,
-            names::POWER_LOSS,
-            false,
         ),
         SummaryRow {
             name: "max_pressure_max".into(),
