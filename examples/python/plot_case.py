@@ -5,8 +5,9 @@
 
 Writes CASE_series.png (the cycle: eccentricity ratio, h_min, flow and power loss, both
 methods) and CASE_pressure.png (the film pressure over the unrolled bearing surface at the
-instant of the highest peak pressure), and prints what the file holds. With --show, opens the
-pressure on the 3-D bearing surface in a pyvista window, with a slider over the stored instants.
+instant of the highest peak pressure), and prints what the file holds. With --surface-png, also
+CASE_surface.png (the same pressure on the 3-D bearing surface, rendered off screen by pyvista);
+with --show, opens that surface in a pyvista window with a slider over the stored instants.
 """
 
 import argparse
@@ -57,9 +58,7 @@ def plot_series(methods, case, out):
 
 
 def plot_pressure(fields, case, out):
-    p = fields["pressure"]
-    k = int(p.max(dim=("theta", "z")).argmax(dim="time"))  # instant of the highest peak
-    snap = p.isel(time=k)
+    snap = fields["pressure"].isel(time=peak_step(fields))
     fig, ax = plt.subplots(figsize=(9, 4), constrained_layout=True)
     mesh = ax.pcolormesh(np.degrees(snap["theta"]), snap["z"] * 1e3, snap.T / 1e6,
                          shading="gouraud", cmap="viridis")
@@ -72,6 +71,48 @@ def plot_pressure(fields, case, out):
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
+
+
+def peak_step(fields):
+    """Index of the stored instant with the highest peak pressure."""
+    return int(fields["pressure"].max(dim=("theta", "z")).argmax(dim="time"))
+
+
+def surface_at(path, step):
+    """The VTKHDF surface of the file at one stored instant, via pyvista."""
+    reader = pv.get_reader(path, force_ext=".vtkhdf").reader
+    reader.UpdateInformation()
+    reader.SetStep(step)
+    reader.Update()
+    return pv.wrap(reader.GetOutput())
+
+
+def surface_png(path, fields, case, out):
+    """The pressure at its peak instant on the bearing surface, drawn off screen: the surface is
+    pushed outwards in proportion to the pressure (0.4 R at the peak) so the pressure hill shows
+    in 3-D, with the undeformed bearing as a grey wireframe."""
+    k = peak_step(fields)
+    mesh = surface_at(path, k)
+    radial = mesh.points.copy()
+    radial[:, 2] = 0.0
+    r = np.linalg.norm(radial, axis=1, keepdims=True)
+    p = mesh.point_data["pressure"]
+    mesh["lift"] = radial / r * (0.4 * r * (p / p.max())[:, None])
+    warped = mesh.warp_by_vector("lift")
+    warped["pressure_MPa"] = p / 1e6
+    plotter = pv.Plotter(off_screen=True, window_size=(1000, 800))
+    plotter.add_mesh(mesh, style="wireframe", color="grey", opacity=0.3)
+    plotter.add_mesh(warped, scalars="pressure_MPa", cmap="viridis",
+                     scalar_bar_args={"title": "film pressure [MPa]", "fmt": "%.1f"})
+    plotter.add_text(f"{case}: crank angle {float(fields['crank_angle'][k]):.0f} deg", font_size=12)
+    # Look at the pressure hill from outside, a little above the mid-plane.
+    peak = radial[int(np.argmax(p))] / r[int(np.argmax(p))]
+    R = float(r.max())
+    plotter.camera_position = [(6 * R * peak[0], 6 * R * peak[1], 3 * R), (0, 0, 0), (0, 0, 1)]
+    path_png = out / f"{case}_surface.png"
+    plotter.screenshot(path_png)
+    plotter.close()
+    return path_png
 
 
 def show_surface(path):
@@ -97,6 +138,8 @@ def main():
     ap.add_argument("file", type=Path, help="a CASE.h5 written by jbearing")
     ap.add_argument("--out", type=Path, default=Path("."), help="directory for the PNGs")
     ap.add_argument("--show", action="store_true", help="open the 3-D pressure surface")
+    ap.add_argument("--surface-png", action="store_true",
+                    help="also render CASE_surface.png off screen (needs OpenGL or OSMesa)")
     args = ap.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
 
@@ -116,6 +159,8 @@ def main():
         surface = pv.read(args.file, force_ext=".vtkhdf")
         print(f"surface: {surface.n_points} points, {surface.n_cells} cells, "
               f"arrays {list(surface.point_data.keys())}")
+        if args.surface_png:
+            print(surface_png(args.file, fields, case, args.out))
         if args.show:
             show_surface(args.file)
 
