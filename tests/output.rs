@@ -399,3 +399,48 @@ fn cycle_mean_is_time_weighted() {
     assert_eq!((row.units.as_str(), row.rigorous), ("W", None));
     assert!((row.mobility.unwrap() - 3.5).abs() < 1e-14);
 }
+
+#[test]
+fn a_steady_single_method_report_is_written_too() {
+    // The steady JB1 case: rigorous only, one sample, no fields. Every writer copes: the HDF5
+    // file has no mobility group and no VTKHDF surface, the plots mark the single point and
+    // say "not computed" where nothing is there.
+    let dir = tempfile::tempdir().unwrap();
+    let mut r = common::report("steady");
+    r.methods.truncate(1);
+    let m = &mut r.methods[0];
+    m.fields = None;
+    m.time.truncate(1);
+    m.crank_angle.truncate(1);
+    m.series.retain(|s| s.name != "power_loss");
+    for s in &mut m.series {
+        s.values.truncate(1);
+    }
+    for w in standard_writers() {
+        w.write(&r, dir.path()).unwrap();
+    }
+    let f = hdf5_metno::File::open(dir.path().join("steady.h5")).unwrap();
+    let mut groups = f.member_names().unwrap();
+    groups.sort();
+    assert_eq!(
+        groups,
+        [
+            "length",
+            "parameters",
+            "radial_clearance",
+            "radius",
+            "rigorous",
+            "summary"
+        ]
+    );
+    let h: Vec<f64> = f
+        .dataset("rigorous/min_film_thickness")
+        .unwrap()
+        .read_raw()
+        .unwrap();
+    assert_eq!(h, r.methods[0].series("min_film_thickness").unwrap().values);
+    assert_eq!(
+        png_size(&dir.path().join("steady_cycle.png")),
+        PlotWriter::default().cycle_size
+    );
+}

@@ -334,6 +334,17 @@ fn draw_panel(
     for c in curves {
         let style = c.color.stroke_width(3);
         let legend_style = style;
+        // A single sample (a steady case) draws no line: mark it.
+        if c.points.len() == 1 {
+            let (x, y) = c.points[0];
+            chart
+                .draw_series(std::iter::once(Circle::new(
+                    (x / QUARTER, y),
+                    6,
+                    c.color.filled(),
+                )))
+                .map_err(e)?;
+        }
         let points = c.points.iter().map(|(x, y)| (x / QUARTER, *y));
         let anno = if c.dashed {
             chart
