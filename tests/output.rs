@@ -425,6 +425,7 @@ fn a_steady_single_method_report_is_written_too() {
     assert_eq!(
         groups,
         [
+            "input_files",
             "length",
             "parameters",
             "radial_clearance",
@@ -443,4 +444,19 @@ fn a_steady_single_method_report_is_written_too() {
         png_size(&dir.path().join("steady_cycle.png")),
         PlotWriter::default().cycle_size
     );
+}
+
+#[test]
+fn large_case_text_is_kept_whole() {
+    // A case with a long inline load table: text far beyond HDF5's 64 KiB compact-attribute
+    // limit must still round-trip (variable-length strings live in the global heap).
+    let dir = tempfile::tempdir().unwrap();
+    let mut r = common::report("big");
+    r.case_text = (0..40_000).map(|k| format!("{k},{}\n", k * 7)).collect();
+    assert!(r.case_text.len() > 400_000);
+    Hdf5Writer::new().write(&r, dir.path()).unwrap();
+    let f = hdf5_metno::File::open(dir.path().join("big.h5")).unwrap();
+    let back: hdf5_metno::types::VarLenUnicode =
+        f.attr("case_text").unwrap().read_scalar().unwrap();
+    assert_eq!(back.as_str(), r.case_text);
 }

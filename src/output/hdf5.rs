@@ -19,6 +19,7 @@
 //! │         theta(theta) [rad], z(z) [m]        the grid
 //! │         <field>(time, theta, z)             pressure, film_thickness, film_content, …
 //! ├── mobility/          as rigorous/, without fields/
+//! ├── input_files/       file(file): paths the case refers to; text(file): their contents
 //! ├── summary/
 //! │      method(method)                         "rigorous", "mobility"
 //! │      <row>(method)                          NaN (= _FillValue) where a method lacks it
@@ -221,6 +222,9 @@ impl FileWriter {
             self.write_method(file, m)?;
         }
         self.write_summary(file, r)?;
+        if !r.input_files.is_empty() {
+            self.write_input_files(file, r)?;
+        }
 
         if surface
             && let Some((method, fields)) = r
@@ -323,6 +327,37 @@ impl FileWriter {
             self.str_attr(&ds, "coordinates", "crank_angle")?;
         }
         Ok(())
+    }
+
+    fn write_input_files(&mut self, file: &h5::File, r: &CaseReport) -> Res<()> {
+        let g = file
+            .create_group("input_files")
+            .map_err(self.err("group input_files"))?;
+        self.str_attr(
+            &g,
+            "description",
+            "input files the case refers to, verbatim",
+        )?;
+        let paths: Vec<VarLenUnicode> = r.input_files.iter().map(|f| vlen(&f.path)).collect();
+        let texts: Vec<VarLenUnicode> = r.input_files.iter().map(|f| vlen(&f.text)).collect();
+        let file_dim = g
+            .new_dataset_builder()
+            .with_data(&paths[..])
+            .create("file")
+            .map_err(self.err("input_files/file"))?;
+        self.make_scale(&file_dim, "file")?;
+        self.str_attr(
+            &file_dim,
+            "long_name",
+            "path as referenced by the case file",
+        )?;
+        let text = g
+            .new_dataset_builder()
+            .with_data(&texts[..])
+            .create("text")
+            .map_err(self.err("input_files/text"))?;
+        self.attach(&text, &[&file_dim], "text")?;
+        self.str_attr(&text, "long_name", "file contents")
     }
 
     fn write_summary(&mut self, file: &h5::File, r: &CaseReport) -> Res<()> {

@@ -15,6 +15,7 @@
 //! ```text
 //! CaseReport
 //! ├── case_name, case_text            the case file exactly as given (TOML text)
+//! ├── input_files: [InputFile]        load / feed tables it refers to, verbatim
 //! ├── geometry                        R, L, c of the bearing (m): the surface and the clearance circle
 //! ├── parameters: [Parameter]         resolved parameters, key = value [units]
 //! ├── run: RunInfo                    jbearing version, git commit, wall time, start time
@@ -439,6 +440,15 @@ impl SummaryRow {
     }
 }
 
+/// An input file of the case, kept verbatim.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InputFile {
+    /// The path as the case file refers to it (e.g. `"loads/main_bearing.csv"`).
+    pub path: String,
+    /// Its contents.
+    pub text: String,
+}
+
 /// Everything written for one case.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CaseReport {
@@ -448,6 +458,9 @@ pub struct CaseReport {
     pub case_text: String,
     /// Where the case file was read from, if from a file.
     pub case_path: Option<PathBuf>,
+    /// Other input files the case refers to (load or feed-pressure tables in CSV), exactly as
+    /// read, so that the result file alone reproduces the run.
+    pub input_files: Vec<InputFile>,
     /// Bearing dimensions.
     pub geometry: Geometry,
     /// Resolved parameters.

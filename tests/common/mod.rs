@@ -23,8 +23,8 @@
 use std::f64::consts::{PI, TAU};
 
 use jbearing::output::{
-    CaseReport, Field, FieldSnapshots, Geometry, Method, MethodResult, Parameter, ParameterValue,
-    Reduction, RunInfo, Series, SummaryRow, names,
+    CaseReport, Field, FieldSnapshots, Geometry, InputFile, Method, MethodResult, Parameter,
+    ParameterValue, Reduction, RunInfo, Series, SummaryRow, names,
 };
 use ndarray::Array3;
 
@@ -227,6 +227,10 @@ pub fn report(case_name: &str) -> CaseReport {
         case_name: case_name.into(),
         case_text: "# writer test fixture\nversion = 1\n[bearing]\nradius = 0.02743 # m\n".into(),
         case_path: None,
+        input_files: vec![InputFile {
+            path: "loads/fixture.csv".into(),
+            text: "crank_angle_deg,load_x_N,load_y_N\n0,0,-1000\n".into(),
+        }],
         geometry: Geometry {
             radius: RADIUS,
             length: LENGTH,

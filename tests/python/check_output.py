@@ -46,6 +46,11 @@ def main(path, expected_path):
         check(key in root.attrs, f"run info '{key}' present")
     check(root["radial_clearance"].attrs["units"] == "m", "clearance has units m")
 
+    inputs = xr.open_dataset(path, engine="h5netcdf", group="input_files")
+    check(list(inputs["file"].values) == ["loads/fixture.csv"]
+          and str(inputs["text"].values[0]).startswith("crank_angle_deg,"),
+          "input files stored verbatim with their paths")
+
     params = xr.open_dataset(path, engine="h5netcdf", group="parameters")
     check(params["viscosity"].attrs["units"] == "Pa s", "parameter units")
     check(str(params["cavitation_model"].values) == "fixture (Gumbel half film)",
