@@ -212,9 +212,18 @@ fn method_curves(
 fn draw_cycle(r: &CaseReport, path: &Path, size: (u32, u32)) -> Result<(), String> {
     let root = BitMapBackend::new(path, size).into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let styles: Vec<String> = r
+        .methods
+        .iter()
+        .map(|m| match m.method {
+            Method::Rigorous => "rigorous (solid)".to_string(),
+            Method::Mobility => "mobility (dashed)".to_string(),
+        })
+        .collect();
     let title = format!(
-        "{}: rigorous (solid) and mobility (dashed) against crank angle",
-        r.case_name
+        "{}: {} against crank angle",
+        r.case_name,
+        styles.join(" and ")
     );
     let body = root
         .titled(&title, (FAMILY, 30).into_font())
@@ -308,7 +317,12 @@ fn draw_panel(
         y1 = y1.max(*y);
     }
     let (y0, y1) = padded_range(y0, y1);
-    let x1 = if x1 > x0 { x1 } else { x0 + 1.0 };
+    // A single instant (steady case): centre it on a 90° window.
+    let (x0, x1) = if x1 > x0 {
+        (x0, x1)
+    } else {
+        (x0 - 45.0, x0 + 45.0)
+    };
     // The x axis runs in quarter turns (crank angle / 90°) so that plotters' "nice" tick values
     // (integers) fall on 0°, 90°, 180°, … as in the paper's figures; labels show degrees.
     const QUARTER: f64 = 90.0;
