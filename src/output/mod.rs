@@ -800,6 +800,11 @@ fn validate_method(m: &MethodResult) -> Result<(), String> {
     }
     for (k, v) in &m.solver_info {
         check_name(k)?;
+        if k == "method" || k == "description" {
+            return Err(format!(
+                "solver_info key '{k}' is reserved for the group's own attribute"
+            ));
+        }
         if let ParameterValue::Number(x) = v
             && !x.is_finite()
         {
