@@ -3,6 +3,8 @@
 # Rust toolchain, then runs every test of the workspace.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# System packages (HDF5 C library, Python venv for the output test); quick when installed.
+bash scripts/deps.sh
 cargo test --workspace --all-targets --no-fail-fast
 # Doc tests are not part of --all-targets.
 cargo test --workspace --doc

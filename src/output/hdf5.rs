@@ -1,0 +1,509 @@
+//! HDF5 output of one case: a netCDF-4-compatible file that xarray opens with named dimensions
+//! and coordinates, with a VTKHDF surface beside it for pyvista / ParaView.
+//!
+//! Layout of `CASE.h5` (dimension names in parentheses; every variable has `units` and
+//! `long_name` attributes):
+//!
+//! ```text
+//! /                      attrs: title, case_name, case_text (the case file as given), case_path,
+//! │                             jbearing_version, git_commit, wall_time_s, started_utc
+//! │  radius, length, radial_clearance          scalars [m]
+//! ├── parameters/        one scalar variable per resolved parameter (numbers with units;
+//! │                      text as strings; flags as 0/1 bytes)
+//! ├── rigorous/          attrs: method, description, solver information
+//! │   │  time(time) [s]                         coordinate (dimension scale)
+//! │   │  crank_angle(time) [degree]             auxiliary coordinate
+//! │   │  <series>(time)                         load_x, feed_pressure, min_film_thickness, …
+//! │   └── fields/
+//! │         time(time), crank_angle(time)       the stored instants
+//! │         theta(theta) [rad], z(z) [m]        the grid
+//! │         <field>(time, theta, z)             pressure, film_thickness, film_content, …
+//! ├── mobility/          as rigorous/, without fields/
+//! ├── input_files/       file(file): paths the case refers to; text(file): their contents
+//! ├── summary/
+//! │      method(method)                         "rigorous", "mobility"
+//! │      <row>(method)                          NaN (= _FillValue) where a method lacks it
+//! └── VTKHDF/            film fields on the cylindrical surface (see `vtkhdf`)
+//! ```
+//!
+//! Dimensions are netCDF-4 style: each coordinate variable is an HDF5 dimension scale
+//! (`CLASS = "DIMENSION_SCALE"`, `NAME`, `REFERENCE_LIST`, made by the HDF5 high-level library's
+//! `H5DSset_scale`, the call netCDF-C itself makes) and each data variable has the scales
+//! attached per axis (`DIMENSION_LIST`, by `H5DSattach_scale`). Scales also carry
+//! `_Netcdf4Dimid`, numbered in creation order through the file as netCDF-C does. That is what
+//! h5netcdf (and so `xarray.open_dataset(path, engine="h5netcdf", group="rigorous")`) reads to
+//! name the axes; without it the variables would have anonymous "phony" dimensions.
+//!
+//! The whole file is written to a temporary file in the output directory and renamed into place
+//! when complete (see [`super::write_atomically`]).
+
+use std::ffi::{CString, c_char, c_uint};
+use std::path::{Path, PathBuf};
+
+use hdf5_metno as h5;
+use hdf5_metno::types::VarLenUnicode;
+use hdf5_metno_sys::h5::herr_t;
+use hdf5_metno_sys::h5i::hid_t;
+
+use super::{
+    CaseReport, FieldSnapshots, Method, MethodResult, OutputError, OutputWriter, ParameterValue,
+    vtkhdf, write_atomically,
+};
+
+// The dimension-scale API of the HDF5 high-level library (libhdf5_hl, linked through the "hl"
+// feature of hdf5-metno-sys, which has no bindings for it).
+unsafe extern "C" {
+    fn H5DSset_scale(dsid: hid_t, dimname: *const c_char) -> herr_t;
+    fn H5DSattach_scale(did: hid_t, dsid: hid_t, idx: c_uint) -> herr_t;
+}
+
+/// Writes `CASE.h5` (see the module documentation for the layout).
+#[derive(Debug, Clone)]
+pub struct Hdf5Writer {
+    /// Also write the `VTKHDF` surface group (default: true).
+    pub vtkhdf_surface: bool,
+}
+
+impl Default for Hdf5Writer {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Hdf5Writer {
+    /// A writer that includes the VTKHDF surface.
+    pub fn new() -> Self {
+        Self {
+            vtkhdf_surface: true,
+        }
+    }
+
+    /// Path of the file written for `report` in `dir`.
+    pub fn file_path(report: &CaseReport, dir: &Path) -> PathBuf {
+        dir.join(format!("{}.h5", report.case_name))
+    }
+
+    /// Validates `report` and writes it to `path` atomically.
+    pub fn write_file(&self, report: &CaseReport, path: &Path) -> Result<(), OutputError> {
+        report.validate()?;
+        write_atomically(path, |tmp| {
+            let file = h5::File::create(tmp).map_err(|source| OutputError::Hdf5 {
+                path: path.to_path_buf(),
+                context: "creating the file".into(),
+                source,
+            })?;
+            let mut w = FileWriter {
+                path: path.to_path_buf(),
+                next_dimid: 0,
+            };
+            w.write_report(&file, report, self.vtkhdf_surface)?;
+            file.close().map_err(w.err("closing the file"))
+        })
+    }
+}
+
+impl OutputWriter for Hdf5Writer {
+    fn name(&self) -> &'static str {
+        "hdf5"
+    }
+
+    fn write(&self, report: &CaseReport, dir: &Path) -> Result<Vec<PathBuf>, OutputError> {
+        let path = Self::file_path(report, dir);
+        self.write_file(report, &path)?;
+        Ok(vec![path])
+    }
+}
+
+/// State of one file being written: its final path for messages and the netCDF dimension ids.
+struct FileWriter {
+    path: PathBuf,
+    next_dimid: i32,
+}
+
+type Res<T> = Result<T, OutputError>;
+
+impl FileWriter {
+    fn err<C: Into<String>>(&self, context: C) -> impl FnOnce(h5::Error) -> OutputError + use<C> {
+        let path = self.path.clone();
+        let context = context.into();
+        move |source| OutputError::Hdf5 {
+            path,
+            context,
+            source,
+        }
+    }
+
+    fn write_report(&mut self, file: &h5::File, r: &CaseReport, surface: bool) -> Res<()> {
+        let run = &r.run;
+        self.str_attr(
+            file,
+            "title",
+            &format!("jbearing results for case '{}'", r.case_name),
+        )?;
+        self.str_attr(file, "case_name", &r.case_name)?;
+        self.str_attr(file, "case_text", &r.case_text)?;
+        let case_path = r
+            .case_path
+            .as_ref()
+            .map(|p| p.display().to_string())
+            .unwrap_or_default();
+        self.str_attr(file, "case_path", &case_path)?;
+        self.str_attr(file, "jbearing_version", &run.jbearing_version)?;
+        self.str_attr(file, "git_commit", &run.git_commit)?;
+        self.f64_attr(file, "wall_time_s", run.wall_time)?;
+        self.str_attr(file, "started_utc", &run.started_utc)?;
+        self.str_attr(
+            file,
+            "methods",
+            &r.methods
+                .iter()
+                .map(|m| m.method.as_str())
+                .collect::<Vec<_>>()
+                .join(" "),
+        )?;
+
+        let g = r.geometry;
+        self.scalar(file, "radius", g.radius, "m", "bearing radius")?;
+        self.scalar(file, "length", g.length, "m", "bearing length")?;
+        self.scalar(
+            file,
+            "radial_clearance",
+            g.radial_clearance,
+            "m",
+            "radial clearance",
+        )?;
+
+        let params = file
+            .create_group("parameters")
+            .map_err(self.err("group parameters"))?;
+        self.str_attr(
+            &params,
+            "description",
+            "resolved case parameters (defaults filled in)",
+        )?;
+        for p in &r.parameters {
+            let ctx = format!("parameter {}", p.key);
+            let ds = match &p.value {
+                ParameterValue::Number(v) => params
+                    .new_dataset::<f64>()
+                    .shape(())
+                    .create(p.key.as_str())
+                    .and_then(|d| d.write_scalar(v).map(|_| d)),
+                ParameterValue::Integer(v) => params
+                    .new_dataset::<i64>()
+                    .shape(())
+                    .create(p.key.as_str())
+                    .and_then(|d| d.write_scalar(v).map(|_| d)),
+                ParameterValue::Flag(v) => params
+                    .new_dataset::<i8>()
+                    .shape(())
+                    .create(p.key.as_str())
+                    .and_then(|d| d.write_scalar(&i8::from(*v)).map(|_| d)),
+                ParameterValue::Text(v) => {
+                    let s = vlen(v);
+                    params
+                        .new_dataset::<VarLenUnicode>()
+                        .shape(())
+                        .create(p.key.as_str())
+                        .and_then(|d| d.write_scalar(&s).map(|_| d))
+                }
+            }
+            .map_err(self.err(ctx))?;
+            if !p.units.is_empty() {
+                self.str_attr(&ds, "units", &p.units)?;
+            }
+            self.str_attr(&ds, "long_name", &p.long_name)?;
+            if matches!(p.value, ParameterValue::Flag(_)) {
+                self.str_attr(&ds, "flag_meanings", "false true")?;
+            }
+        }
+
+        for m in &r.methods {
+            self.write_method(file, m)?;
+        }
+        self.write_summary(file, r)?;
+        if !r.input_files.is_empty() {
+            self.write_input_files(file, r)?;
+        }
+
+        if surface
+            && let Some((method, fields)) = r
+                .methods
+                .iter()
+                .find_map(|m| m.fields.as_ref().map(|f| (m.method, f)))
+        {
+            vtkhdf::write_surface(file, &r.geometry, method, fields)
+                .map_err(self.err("VTKHDF surface"))?;
+        }
+        Ok(())
+    }
+
+    fn write_method(&mut self, file: &h5::File, m: &MethodResult) -> Res<()> {
+        let name = m.method.as_str();
+        let g = file
+            .create_group(name)
+            .map_err(self.err(format!("group {name}")))?;
+        self.str_attr(&g, "method", name)?;
+        self.str_attr(&g, "description", m.method.description())?;
+        for (k, v) in &m.solver_info {
+            let ctx = format!("{name} attribute {k}");
+            match v {
+                ParameterValue::Number(x) => self.f64_attr(&g, k, *x)?,
+                ParameterValue::Integer(x) => g
+                    .new_attr::<i64>()
+                    .shape(())
+                    .create(k.as_str())
+                    .and_then(|a| a.write_scalar(x))
+                    .map_err(self.err(ctx))?,
+                ParameterValue::Flag(x) => g
+                    .new_attr::<i8>()
+                    .shape(())
+                    .create(k.as_str())
+                    .and_then(|a| a.write_scalar(&i8::from(*x)))
+                    .map_err(self.err(ctx))?,
+                ParameterValue::Text(x) => self.str_attr(&g, k, x)?,
+            }
+        }
+        let time = self.coordinate(&g, "time", &m.time, "s", "time")?;
+        let crank = self.variable(&g, "crank_angle", &m.crank_angle, &[&time])?;
+        self.str_attr(&crank, "units", "degree")?;
+        self.str_attr(&crank, "long_name", "crank angle")?;
+        for s in &m.series {
+            let ds = self.variable(&g, &s.name, &s.values, &[&time])?;
+            self.str_attr(&ds, "units", &s.units)?;
+            self.str_attr(&ds, "long_name", &s.long_name)?;
+            self.str_attr(&ds, "coordinates", "crank_angle")?;
+        }
+        if let Some(f) = &m.fields {
+            self.write_fields(&g, name, f)?;
+        }
+        Ok(())
+    }
+
+    fn write_fields(&mut self, parent: &h5::Group, method: &str, f: &FieldSnapshots) -> Res<()> {
+        let g = parent
+            .create_group("fields")
+            .map_err(self.err(format!("group {method}/fields")))?;
+        self.str_attr(
+            &g,
+            "description",
+            "film fields on the (theta, z) grid at the stored instants of the final cycle; theta \
+             is periodic (theta = 2 pi is theta = 0, not repeated)",
+        )?;
+        let time = self.coordinate(&g, "time", &f.time, "s", "time of the stored instant")?;
+        let crank = self.variable(&g, "crank_angle", &f.crank_angle, &[&time])?;
+        self.str_attr(&crank, "units", "degree")?;
+        self.str_attr(&crank, "long_name", "crank angle")?;
+        let theta = self.coordinate(
+            &g,
+            "theta",
+            &f.theta,
+            "rad",
+            "circumferential angle from +x towards +y (bearing frame)",
+        )?;
+        let z = self.coordinate(
+            &g,
+            "z",
+            &f.z,
+            "m",
+            "axial position from the bearing mid-plane",
+        )?;
+        let (nt, nth, nz) = (f.time.len(), f.theta.len(), f.z.len());
+        for fld in &f.fields {
+            let ctx = format!("{method}/fields/{}", fld.name);
+            let mut b = g.new_dataset_builder();
+            if h5::filters::deflate_available() {
+                // One chunk per instant: a reader slicing one time reads one chunk.
+                b = b.chunk((1, nth, nz)).shuffle().deflate(4);
+            }
+            let ds = b
+                .with_data(fld.values.view())
+                .create(fld.name.as_str())
+                .map_err(self.err(ctx))?;
+            debug_assert_eq!(ds.shape(), vec![nt, nth, nz]);
+            self.attach(&ds, &[&time, &theta, &z], &fld.name)?;
+            self.str_attr(&ds, "units", &fld.units)?;
+            self.str_attr(&ds, "long_name", &fld.long_name)?;
+            self.str_attr(&ds, "coordinates", "crank_angle")?;
+        }
+        Ok(())
+    }
+
+    fn write_input_files(&mut self, file: &h5::File, r: &CaseReport) -> Res<()> {
+        let g = file
+            .create_group("input_files")
+            .map_err(self.err("group input_files"))?;
+        self.str_attr(
+            &g,
+            "description",
+            "input files the case refers to, verbatim",
+        )?;
+        let paths: Vec<VarLenUnicode> = r.input_files.iter().map(|f| vlen(&f.path)).collect();
+        let texts: Vec<VarLenUnicode> = r.input_files.iter().map(|f| vlen(&f.text)).collect();
+        let file_dim = g
+            .new_dataset_builder()
+            .with_data(&paths[..])
+            .create("file")
+            .map_err(self.err("input_files/file"))?;
+        self.make_scale(&file_dim, "file")?;
+        self.str_attr(
+            &file_dim,
+            "long_name",
+            "path as referenced by the case file",
+        )?;
+        let text = g
+            .new_dataset_builder()
+            .with_data(&texts[..])
+            .create("text")
+            .map_err(self.err("input_files/text"))?;
+        self.attach(&text, &[&file_dim], "text")?;
+        self.str_attr(&text, "long_name", "file contents")
+    }
+
+    fn write_summary(&mut self, file: &h5::File, r: &CaseReport) -> Res<()> {
+        let g = file
+            .create_group("summary")
+            .map_err(self.err("group summary"))?;
+        self.str_attr(
+            &g,
+            "description",
+            "cycle figures per method; mobility deviation = (mobility - rigorous) / |rigorous|",
+        )?;
+        let labels: Vec<VarLenUnicode> = Method::ALL.iter().map(|m| vlen(m.as_str())).collect();
+        let method = g
+            .new_dataset_builder()
+            .with_data(&labels[..])
+            .create("method")
+            .map_err(self.err("summary/method"))?;
+        self.make_scale(&method, "method")?;
+        self.str_attr(&method, "long_name", "solution method")?;
+        for row in &r.summary {
+            let values: Vec<f64> = Method::ALL
+                .iter()
+                .map(|m| row.value(*m).unwrap_or(f64::NAN))
+                .collect();
+            let ds = self.variable(&g, &row.name, &values, &[&method])?;
+            self.str_attr(&ds, "units", &row.units)?;
+            self.str_attr(&ds, "long_name", &row.long_name)?;
+            self.f64_attr(&ds, "_FillValue", f64::NAN)?;
+        }
+        Ok(())
+    }
+
+    /// A 1-D coordinate variable that is also its own dimension (netCDF "coordinate variable").
+    fn coordinate(
+        &mut self,
+        g: &h5::Group,
+        name: &str,
+        values: &[f64],
+        units: &str,
+        long_name: &str,
+    ) -> Res<h5::Dataset> {
+        let ds = g
+            .new_dataset_builder()
+            .with_data(values)
+            .create(name)
+            .map_err(self.err(format!("coordinate {name}")))?;
+        self.make_scale(&ds, name)?;
+        self.str_attr(&ds, "units", units)?;
+        self.str_attr(&ds, "long_name", long_name)?;
+        Ok(ds)
+    }
+
+    fn make_scale(&mut self, ds: &h5::Dataset, name: &str) -> Res<()> {
+        let cname = CString::new(name).expect("validated names contain no NUL");
+        let status = {
+            let _lock = hdf5_metno_sys::LOCK.lock();
+            // SAFETY: `ds` is an open dataset for the duration of the call, `cname` a valid C
+            // string; the library-wide lock serialises HDF5 calls as hdf5-metno does.
+            unsafe { H5DSset_scale(ds.id(), cname.as_ptr()) }
+        };
+        if status < 0 {
+            return Err(self.hl_error(format!("H5DSset_scale on '{name}'")));
+        }
+        let id = self.next_dimid;
+        self.next_dimid += 1;
+        ds.new_attr::<i32>()
+            .shape(())
+            .create("_Netcdf4Dimid")
+            .and_then(|a| a.write_scalar(&id))
+            .map_err(self.err(format!("_Netcdf4Dimid of '{name}'")))
+    }
+
+    /// A 1-D data variable along the given dimension scales.
+    fn variable(
+        &mut self,
+        g: &h5::Group,
+        name: &str,
+        values: &[f64],
+        dims: &[&h5::Dataset],
+    ) -> Res<h5::Dataset> {
+        let ds = g
+            .new_dataset_builder()
+            .with_data(values)
+            .create(name)
+            .map_err(self.err(format!("variable {name}")))?;
+        self.attach(&ds, dims, name)?;
+        Ok(ds)
+    }
+
+    fn attach(&self, ds: &h5::Dataset, scales: &[&h5::Dataset], name: &str) -> Res<()> {
+        for (axis, scale) in scales.iter().enumerate() {
+            let status = {
+                let _lock = hdf5_metno_sys::LOCK.lock();
+                // SAFETY: both datasets are open; axis < rank (the caller passes one scale per
+                // axis); calls serialised by the library-wide lock.
+                unsafe { H5DSattach_scale(ds.id(), scale.id(), axis as c_uint) }
+            };
+            if status < 0 {
+                return Err(self.hl_error(format!("H5DSattach_scale on '{name}' axis {axis}")));
+            }
+        }
+        Ok(())
+    }
+
+    fn hl_error(&self, context: String) -> OutputError {
+        OutputError::Hdf5 {
+            path: self.path.clone(),
+            context,
+            source: h5::Error::from("the HDF5 dimension-scale call failed"),
+        }
+    }
+
+    fn scalar(&self, g: &h5::Group, name: &str, v: f64, units: &str, long: &str) -> Res<()> {
+        let ds = g
+            .new_dataset::<f64>()
+            .shape(())
+            .create(name)
+            .and_then(|d| d.write_scalar(&v).map(|_| d))
+            .map_err(self.err(format!("scalar {name}")))?;
+        self.str_attr(&ds, "units", units)?;
+        self.str_attr(&ds, "long_name", long)
+    }
+
+    fn str_attr(&self, loc: &h5::Location, name: &str, value: &str) -> Res<()> {
+        let v = vlen(value);
+        loc.new_attr::<VarLenUnicode>()
+            .shape(())
+            .create(name)
+            .and_then(|a| a.write_scalar(&v))
+            .map_err(self.err(format!("attribute {name}")))
+    }
+
+    fn f64_attr(&self, loc: &h5::Location, name: &str, value: f64) -> Res<()> {
+        loc.new_attr::<f64>()
+            .shape(())
+            .create(name)
+            .and_then(|a| a.write_scalar(&value))
+            .map_err(self.err(format!("attribute {name}")))
+    }
+}
+
+/// Text as an HDF5 variable-length UTF-8 string (h5py and xarray read it as `str`). NUL bytes,
+/// which C strings cannot hold, are replaced by U+FFFD.
+fn vlen(s: &str) -> VarLenUnicode {
+    let clean = s.replace('\0', "\u{FFFD}");
+    clean
+        .parse()
+        .expect("a string without NUL is a valid VarLenUnicode")
+}

@@ -1,0 +1,167 @@
+//! The film fields on the cylindrical bearing surface as a VTKHDF group, so that pyvista
+//! (`pyvista.read(path, force_ext=".vtkhdf")`) and ParaView (VTKHDF reader) show the pressure
+//! where it acts.
+//!
+//! VTKHDF (VTK's HDF5 format, version 2.x; spec: docs.vtk.org, "VTKHDF format specification")
+//! keeps a VTK dataset in a root group `/VTKHDF`; groups outside it are ignored by the reader,
+//! which lets the netCDF groups of the same file live beside it. We write a temporal
+//! `UnstructuredGrid` of quadrilaterals:
+//!
+//! ```text
+//!   point p(i, j) = i·n_z + j          x = R cos θ_i,  y = R sin θ_i,  z = z_j      (m)
+//!
+//!   z_{j+1}  p(i,j+1) ──── p(i+1,j+1)      quad (i, j), i = 0 … n_θ−1, j = 0 … n_z−2,
+//!             │               │            corners in this order (normal e_θ × e_z = +e_r,
+//!   z_j      p(i,j) ─────── p(i+1,j)       outward); i+1 wraps to 0: the surface is closed
+//!            θ_i            θ_{i+1}        in θ without duplicated seam points.
+//! ```
+//!
+//! Point order is the (θ, z) row-major order of the fields, so point data of instant k is
+//! `field[k, :, :]` flattened. Geometry and topology are stored once; the `Steps` group makes
+//! every instant a time step (`Steps/Values` = time in s) whose point data starts at
+//! `k · n_points` of the flattened (instant, point) arrays (`Steps/PointDataOffsets/<name>`), while
+//! the point, cell and connectivity offsets stay 0 (geometry reused).
+//!
+//! ```text
+//! /VTKHDF                     attrs Version = [2, 2], Type = "UnstructuredGrid"
+//!   NumberOfPoints [1], NumberOfCells [1], NumberOfConnectivityIds [1]      (int64)
+//!   Points [n_points, 3] (f64), Connectivity [4 n_cells], Offsets [n_cells+1] (int64),
+//!   Types [n_cells] (uint8, VTK_QUAD = 9)
+//!   PointData/<field> [n_steps · n_points]
+//!   Steps/   attr NSteps; Values [n_steps]; PartOffsets, NumberOfParts, PointOffsets,
+//!            CellOffsets, ConnectivityIdOffsets [n_steps]; PointDataOffsets/<field> [n_steps]
+//! ```
+
+use hdf5_metno as h5;
+use hdf5_metno::types::FixedAscii;
+
+use super::{FieldSnapshots, Geometry, Method};
+
+/// VTK cell type id of a linear quadrilateral (vtkCellType.h).
+const VTK_QUAD: u8 = 9;
+
+/// Number of surface points for a grid of `n_theta × n_z` nodes.
+pub fn surface_point_count(n_theta: usize, n_z: usize) -> usize {
+    n_theta * n_z
+}
+
+/// Number of quadrilaterals (the surface is closed in θ).
+pub fn surface_cell_count(n_theta: usize, n_z: usize) -> usize {
+    n_theta * (n_z - 1)
+}
+
+/// Writes `/VTKHDF` into `file` from the fields of `method`. The caller has validated the fields
+/// (grid sizes ≥ 3 × 2, shapes consistent).
+pub fn write_surface(
+    file: &h5::File,
+    geometry: &Geometry,
+    method: Method,
+    f: &FieldSnapshots,
+) -> h5::Result<()> {
+    let (nth, nz, nt) = (f.theta.len(), f.z.len(), f.time.len());
+    let n_points = surface_point_count(nth, nz);
+    let n_cells = surface_cell_count(nth, nz);
+
+    let root = file.create_group("VTKHDF")?;
+    root.new_attr::<i64>()
+        .shape(2)
+        .create("Version")?
+        .write(&[2i64, 2])?;
+    let kind: FixedAscii<16> = FixedAscii::from_ascii(b"UnstructuredGrid")
+        .map_err(|e| h5::Error::from(e.to_string().as_str()))?;
+    root.new_attr::<FixedAscii<16>>()
+        .shape(())
+        .create("Type")?
+        .write_scalar(&kind)?;
+    let about = format!(
+        "film fields of the {} solution on the bearing surface r = R = {} m; one time step per \
+         stored instant (Steps/Values, s)",
+        method.as_str(),
+        geometry.radius
+    );
+    let about: hdf5_metno::types::VarLenUnicode = about.parse().expect("no NUL");
+    root.new_attr::<hdf5_metno::types::VarLenUnicode>()
+        .shape(())
+        .create("description")?
+        .write_scalar(&about)?;
+
+    let mut points = ndarray::Array2::<f64>::zeros((n_points, 3));
+    for (i, th) in f.theta.iter().enumerate() {
+        for (j, z) in f.z.iter().enumerate() {
+            let p = i * nz + j;
+            points[[p, 0]] = geometry.radius * th.cos();
+            points[[p, 1]] = geometry.radius * th.sin();
+            points[[p, 2]] = *z;
+        }
+    }
+    let mut connectivity = Vec::with_capacity(4 * n_cells);
+    for i in 0..nth {
+        let next = (i + 1) % nth;
+        for j in 0..nz - 1 {
+            connectivity.extend_from_slice(&[
+                (i * nz + j) as i64,
+                (next * nz + j) as i64,
+                (next * nz + j + 1) as i64,
+                (i * nz + j + 1) as i64,
+            ]);
+        }
+    }
+    let offsets: Vec<i64> = (0..=n_cells as i64).map(|c| 4 * c).collect();
+    let types = vec![VTK_QUAD; n_cells];
+
+    let ds_i64 = |name: &str, data: &[i64]| -> h5::Result<()> {
+        root.new_dataset_builder().with_data(data).create(name)?;
+        Ok(())
+    };
+    ds_i64("NumberOfPoints", &[n_points as i64])?;
+    ds_i64("NumberOfCells", &[n_cells as i64])?;
+    ds_i64("NumberOfConnectivityIds", &[connectivity.len() as i64])?;
+    root.new_dataset_builder()
+        .with_data(points.view())
+        .create("Points")?;
+    ds_i64("Connectivity", &connectivity)?;
+    ds_i64("Offsets", &offsets)?;
+    root.new_dataset_builder()
+        .with_data(&types[..])
+        .create("Types")?;
+
+    let point_data = root.create_group("PointData")?;
+    for fld in &f.fields {
+        // Row-major (instant, θ, z) flattened is (instant, point): exactly the layout wanted.
+        let flat: Vec<f64> = fld.values.iter().copied().collect();
+        let mut b = point_data.new_dataset_builder();
+        if h5::filters::deflate_available() {
+            b = b.chunk(n_points).shuffle().deflate(4);
+        }
+        b.with_data(&flat[..]).create(fld.name.as_str())?;
+    }
+
+    let steps = root.create_group("Steps")?;
+    steps
+        .new_attr::<i64>()
+        .shape(())
+        .create("NSteps")?
+        .write_scalar(&(nt as i64))?;
+    let step_ds = |name: &str, data: &[i64]| -> h5::Result<()> {
+        steps.new_dataset_builder().with_data(data).create(name)?;
+        Ok(())
+    };
+    steps
+        .new_dataset_builder()
+        .with_data(&f.time[..])
+        .create("Values")?;
+    let zeros = vec![0i64; nt];
+    step_ds("PartOffsets", &zeros)?;
+    step_ds("NumberOfParts", &vec![1i64; nt])?;
+    step_ds("PointOffsets", &zeros)?;
+    step_ds("CellOffsets", &zeros)?;
+    step_ds("ConnectivityIdOffsets", &zeros)?;
+    let pdo = steps.create_group("PointDataOffsets")?;
+    let data_offsets: Vec<i64> = (0..nt as i64).map(|k| k * n_points as i64).collect();
+    for fld in &f.fields {
+        pdo.new_dataset_builder()
+            .with_data(&data_offsets[..])
+            .create(fld.name.as_str())?;
+    }
+    Ok(())
+}

@@ -1,0 +1,462 @@
+//! Output writers end to end: the HDF5 file read back by xarray (h5netcdf) and pyvista in a
+//! fresh virtualenv, the plots, the CSV summary, atomic writes and report validation.
+//! The data is the writer test fixture of `common` (closed forms, not solver output).
+
+mod common;
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+use std::time::Instant;
+
+use jbearing::output::{
+    CaseReport, CsvSummaryWriter, Hdf5Writer, Method, OutputError, OutputWriter, PlotWriter,
+    Reduction, SummaryRow, standard_writers, write_atomically,
+};
+
+/// Values the checker compares with what it reads, one line each: `key v1 v2 …`. f64 `Display`
+/// is the shortest string that parses back to the same f64, so the comparison can be exact.
+fn expected_values(r: &CaseReport) -> String {
+    let mut out = String::new();
+    let line = |out: &mut String, key: &str, v: &mut dyn Iterator<Item = f64>| {
+        out.push_str(key);
+        for x in v {
+            write!(out, " {x}").unwrap();
+        }
+        out.push('\n');
+    };
+    for m in &r.methods {
+        let g = m.method.as_str();
+        line(&mut out, &format!("{g}/time"), &mut m.time.iter().copied());
+        line(
+            &mut out,
+            &format!("{g}/crank_angle"),
+            &mut m.crank_angle.iter().copied(),
+        );
+        for s in &m.series {
+            line(
+                &mut out,
+                &format!("{g}/{}", s.name),
+                &mut s.values.iter().copied(),
+            );
+        }
+        if let Some(f) = &m.fields {
+            line(
+                &mut out,
+                &format!("{g}/fields/time"),
+                &mut f.time.iter().copied(),
+            );
+            line(
+                &mut out,
+                &format!("{g}/fields/theta"),
+                &mut f.theta.iter().copied(),
+            );
+            line(&mut out, &format!("{g}/fields/z"), &mut f.z.iter().copied());
+            for fld in &f.fields {
+                line(
+                    &mut out,
+                    &format!("{g}/fields/{}", fld.name),
+                    &mut fld.values.iter().copied(),
+                );
+            }
+        }
+    }
+    for row in &r.summary {
+        let v = Method::ALL.map(|m| row.value(m).unwrap_or(f64::NAN));
+        line(
+            &mut out,
+            &format!("summary/{}", row.name),
+            &mut v.into_iter(),
+        );
+    }
+    out
+}
+
+fn fixture_file(dir: &Path, name: &str) -> (CaseReport, PathBuf) {
+    let report = common::report(name);
+    let written = Hdf5Writer::new().write(&report, dir).expect("HDF5 written");
+    assert_eq!(written, vec![dir.join(format!("{name}.h5"))]);
+    (report, written[0].clone())
+}
+
+/// A virtualenv with examples/python/requirements.txt, created once per requirements content
+/// under the target directory (a clean clone gets a fresh one; reruns reuse it). The Python
+/// interpreter is `python3` from PATH, or `$JBEARING_PYTHON`.
+fn python_env() -> PathBuf {
+    static VENV: OnceLock<PathBuf> = OnceLock::new();
+    VENV.get_or_init(|| {
+        let start = Instant::now();
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let requirements = root.join("examples/python/requirements.txt");
+        let wanted = std::fs::read_to_string(&requirements).expect("requirements.txt");
+        let venv = Path::new(env!("CARGO_TARGET_TMPDIR")).join("python-venv");
+        let stamp = venv.join("jbearing-requirements.txt");
+        let python = venv.join("bin/python");
+        if std::fs::read_to_string(&stamp).ok().as_deref() == Some(wanted.as_str())
+            && python.exists()
+        {
+            return python;
+        }
+        let _ = std::fs::remove_dir_all(&venv);
+        let base = std::env::var("JBEARING_PYTHON").unwrap_or_else(|_| "python3".into());
+        run(
+            Command::new(&base).args(["-m", "venv"]).arg(&venv),
+            "python3 -m venv",
+        );
+        run(
+            Command::new(&python)
+                .args([
+                    "-m",
+                    "pip",
+                    "install",
+                    "--quiet",
+                    "--disable-pip-version-check",
+                    "-r",
+                ])
+                .arg(&requirements),
+            "pip install -r examples/python/requirements.txt",
+        );
+        std::fs::write(&stamp, wanted).unwrap();
+        eprintln!(
+            "python virtualenv created in {:.1} s: {}",
+            start.elapsed().as_secs_f64(),
+            venv.display()
+        );
+        python
+    })
+    .clone()
+}
+
+fn run(cmd: &mut Command, what: &str) -> String {
+    let out = cmd
+        .output()
+        .unwrap_or_else(|e| panic!("{what}: cannot start: {e} (run scripts/deps.sh)"));
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{what} failed ({}):\n--- stdout\n{stdout}\n--- stderr\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    stdout
+}
+
+#[test]
+fn hdf5_file_reads_back_in_xarray_and_pyvista() {
+    let python = python_env();
+    let dir = tempfile::tempdir().unwrap();
+    let (report, path) = fixture_file(dir.path(), "short_bearing_fixture");
+    let expected = dir.path().join("expected.txt");
+    std::fs::write(&expected, expected_values(&report)).unwrap();
+    let checker = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_output.py");
+    let start = Instant::now();
+    let out = run(
+        Command::new(&python)
+            .arg(&checker)
+            .arg(&path)
+            .arg(&expected),
+        "tests/python/check_output.py",
+    );
+    eprintln!("checker ran in {:.1} s", start.elapsed().as_secs_f64());
+    assert!(out.contains("all checks passed"), "{out}");
+}
+
+#[test]
+fn python_example_plots_from_the_file() {
+    let python = python_env();
+    let dir = tempfile::tempdir().unwrap();
+    let (_, path) = fixture_file(dir.path(), "example");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/python/plot_case.py");
+    let out = run(
+        Command::new(&python)
+            .args(["-W", "error"])
+            .arg(&script)
+            .arg(&path)
+            .arg("--out")
+            .arg(dir.path()),
+        "examples/python/plot_case.py",
+    );
+    for png in ["example_series.png", "example_pressure.png"] {
+        let bytes = std::fs::read(dir.path().join(png)).unwrap_or_else(|e| panic!("{png}: {e}"));
+        assert!(
+            bytes.starts_with(b"\x89PNG\r\n\x1a\n"),
+            "{png} is not a PNG"
+        );
+    }
+    // The example prints the surface it read through pyvista: one point per (θ, z) node.
+    let points = common::N_THETA * common::N_Z;
+    assert!(out.contains(&format!("surface: {points} points")), "{out}");
+}
+
+/// Width and height from a PNG's IHDR chunk.
+fn png_size(path: &Path) -> (u32, u32) {
+    let b = std::fs::read(path).unwrap();
+    assert!(
+        b.starts_with(b"\x89PNG\r\n\x1a\n"),
+        "{} is not a PNG",
+        path.display()
+    );
+    let be = |i: usize| u32::from_be_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]]);
+    (be(16), be(20))
+}
+
+#[test]
+fn plots_and_csv_summary_are_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = common::report("plots");
+    let writer = PlotWriter::default();
+    let paths = writer.write(&report, dir.path()).unwrap();
+    assert_eq!(paths, PlotWriter::file_paths(&report, dir.path()).to_vec());
+    assert_eq!(png_size(&paths[0]), writer.cycle_size);
+    assert_eq!(png_size(&paths[1]), (writer.orbit_size, writer.orbit_size));
+
+    let csv_paths = CsvSummaryWriter.write(&report, dir.path()).unwrap();
+    let mut rdr = csv::Reader::from_path(&csv_paths[0]).unwrap();
+    let rows: Vec<csv::StringRecord> = rdr.records().map(|r| r.unwrap()).collect();
+    assert_eq!(rows.len(), report.summary.len());
+    for (row, want) in rows.iter().zip(&report.summary) {
+        assert_eq!(&row[0], want.name);
+        assert_eq!(row[3].parse::<f64>().ok(), want.rigorous);
+        assert_eq!(row[4].parse::<f64>().ok(), want.mobility);
+    }
+    // The fixture's mobility h_min is the closed form at 0.9 ε: h = c (1 − 0.9 ε) against
+    // c (1 − ε), a positive deviation that the CSV states in percent.
+    let dev: f64 = rows[0][5].parse().unwrap();
+    let (r, m) = (
+        report.summary[0].rigorous.unwrap(),
+        report.summary[0].mobility.unwrap(),
+    );
+    assert!((dev - 100.0 * (m - r) / r).abs() < 1e-9 && dev > 0.0);
+    assert_eq!(&rows[3][4], "", "a value a method lacks is an empty cell");
+
+    // Only the finished files are in the directory: no temporaries left behind.
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["plots_cycle.png", "plots_orbit.png", "plots_summary.csv"]
+    );
+}
+
+#[test]
+fn failed_write_leaves_no_file_and_keeps_the_old_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("case.h5");
+    std::fs::write(&target, b"previous result").unwrap();
+    let err = write_atomically(&target, |tmp| {
+        std::fs::write(tmp, b"half a file").unwrap();
+        Err(OutputError::InvalidReport {
+            case: "case".into(),
+            what: "simulated failure half-way".into(),
+        })
+    })
+    .unwrap_err();
+    assert!(err.to_string().contains("simulated failure"), "{err}");
+    assert_eq!(std::fs::read(&target).unwrap(), b"previous result");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        1,
+        "temporary file removed"
+    );
+
+    // An HDF5 write that fails inside the library (a series name HDF5 accepts twice is
+    // impossible after validation, so use a directory that vanishes) leaves nothing either.
+    let gone = dir.path().join("gone");
+    let err = Hdf5Writer::new()
+        .write(&common::report("x"), &gone)
+        .unwrap_err();
+    assert!(matches!(err, OutputError::Io { .. }), "{err}");
+    assert!(!gone.exists());
+}
+
+#[test]
+fn invalid_reports_are_rejected_with_the_place_named() {
+    let dir = tempfile::tempdir().unwrap();
+    type Spoil = Box<dyn Fn(&mut CaseReport)>;
+    let cases: Vec<(Spoil, &str)> = vec![
+        (
+            Box::new(|r| r.methods[0].series[2].values.pop().map(|_| ()).unwrap()),
+            "rigorous: series 'feed_pressure' has 72 values for 73 time samples",
+        ),
+        (
+            Box::new(|r| r.methods[1].series[6].values[5] = f64::NAN),
+            "mobility: min_film_thickness[5] = NaN is not finite",
+        ),
+        (
+            Box::new(|r| r.methods[0].time[3] = r.methods[0].time[2]),
+            "rigorous: time must increase strictly: time[3]",
+        ),
+        (
+            Box::new(|r| r.methods[0].fields.as_mut().unwrap().theta[0] = -0.1),
+            "theta must lie in [0, 2π)",
+        ),
+        (
+            Box::new(|r| r.methods[0].series[0].name = "load x".into()),
+            "name 'load x' must start with a letter",
+        ),
+        (
+            Box::new(|r| r.geometry.radial_clearance = 0.0),
+            "geometry radial_clearance = 0 m must be finite and > 0",
+        ),
+        (
+            Box::new(|r| r.methods[1].method = Method::Rigorous),
+            "method rigorous appears twice",
+        ),
+    ];
+    for (spoil, message) in cases {
+        let mut r = common::report("bad");
+        spoil(&mut r);
+        let err = Hdf5Writer::new().write(&r, dir.path()).unwrap_err();
+        assert!(
+            matches!(err, OutputError::InvalidReport { .. }) && err.to_string().contains(message),
+            "expected '{message}', got '{err}'"
+        );
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn writers_behind_one_trait() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = common::report("all");
+    let writers = standard_writers();
+    assert_eq!(
+        writers.iter().map(|w| w.name()).collect::<Vec<_>>(),
+        ["hdf5", "plots", "csv-summary"]
+    );
+    let mut written = Vec::new();
+    for w in &writers {
+        written.extend(w.write(&report, dir.path()).unwrap());
+    }
+    assert_eq!(written.len(), 4);
+    assert!(written.iter().all(|p| p.exists()));
+    // A second run over the same directory replaces the files (rename over the old ones).
+    for w in &writers {
+        w.write(&report, dir.path()).unwrap();
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 4);
+}
+
+#[test]
+fn batch_threads_write_cases_in_parallel() {
+    // Batch runs write several cases at once; the HDF5 library is serialised behind one lock
+    // (hdf5-metno's, which the dimension-scale calls take too). Every file must come out whole.
+    let dir = tempfile::tempdir().unwrap();
+    std::thread::scope(|s| {
+        for k in 0..4 {
+            let dir = dir.path();
+            s.spawn(move || {
+                for w in standard_writers() {
+                    w.write(&common::report(&format!("case{k}")), dir).unwrap();
+                }
+            });
+        }
+    });
+    for k in 0..4 {
+        let f = hdf5_metno::File::open(dir.path().join(format!("case{k}.h5"))).unwrap();
+        let p = f.dataset("rigorous/fields/pressure").unwrap();
+        assert_eq!(
+            p.shape(),
+            [common::N_INSTANTS, common::N_THETA, common::N_Z]
+        );
+        let back: Vec<f64> = f
+            .dataset("rigorous/min_film_thickness")
+            .unwrap()
+            .read_raw()
+            .unwrap();
+        let want = &common::report("x").methods[0]
+            .series(jbearing::output::names::MIN_FILM_THICKNESS)
+            .unwrap()
+            .values
+            .clone();
+        assert_eq!(&back, want);
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 16);
+}
+
+#[test]
+fn cycle_mean_is_time_weighted() {
+    // f(t) = 2 + 3 t on [0, 1] has mean 3.5. The trapezoidal rule is exact for a linear f on
+    // any sampling, while the plain average of these clustered samples would be 2.78.
+    let mut m = common::report("mean").methods.remove(1);
+    m.time = vec![0.0, 0.05, 0.1, 0.15, 1.0];
+    m.crank_angle = m.time.iter().map(|t| 360.0 * t).collect();
+    m.series = vec![jbearing::output::Series::new(
+        "power_loss",
+        "power loss",
+        "W",
+        m.time.iter().map(|t| 2.0 + 3.0 * t).collect(),
+    )];
+    assert!((m.reduce("power_loss", Reduction::Mean).unwrap() - 3.5).abs() < 1e-14);
+    assert_eq!(m.reduce("power_loss", Reduction::Min), Some(2.0));
+    assert_eq!(m.reduce("power_loss", Reduction::Max), Some(5.0));
+    assert_eq!(m.reduce("absent", Reduction::Max), None);
+    let row = SummaryRow::from_series(&[m], "power_loss", Reduction::Mean, "p", "mean power");
+    assert_eq!((row.units.as_str(), row.rigorous), ("W", None));
+    assert!((row.mobility.unwrap() - 3.5).abs() < 1e-14);
+}
+
+#[test]
+fn a_steady_single_method_report_is_written_too() {
+    // The steady JB1 case: rigorous only, one sample, no fields. Every writer copes: the HDF5
+    // file has no mobility group and no VTKHDF surface, the plots mark the single point and
+    // say "not computed" where nothing is there.
+    let dir = tempfile::tempdir().unwrap();
+    let mut r = common::report("steady");
+    r.methods.truncate(1);
+    let m = &mut r.methods[0];
+    m.fields = None;
+    m.time.truncate(1);
+    m.crank_angle.truncate(1);
+    m.series.retain(|s| s.name != "power_loss");
+    for s in &mut m.series {
+        s.values.truncate(1);
+    }
+    for w in standard_writers() {
+        w.write(&r, dir.path()).unwrap();
+    }
+    let f = hdf5_metno::File::open(dir.path().join("steady.h5")).unwrap();
+    let mut groups = f.member_names().unwrap();
+    groups.sort();
+    assert_eq!(
+        groups,
+        [
+            "input_files",
+            "length",
+            "parameters",
+            "radial_clearance",
+            "radius",
+            "rigorous",
+            "summary"
+        ]
+    );
+    let h: Vec<f64> = f
+        .dataset("rigorous/min_film_thickness")
+        .unwrap()
+        .read_raw()
+        .unwrap();
+    assert_eq!(h, r.methods[0].series("min_film_thickness").unwrap().values);
+    assert_eq!(
+        png_size(&dir.path().join("steady_cycle.png")),
+        PlotWriter::default().cycle_size
+    );
+}
+
+#[test]
+fn large_case_text_is_kept_whole() {
+    // A case with a long inline load table: text far beyond HDF5's 64 KiB compact-attribute
+    // limit must still round-trip (variable-length strings live in the global heap).
+    let dir = tempfile::tempdir().unwrap();
+    let mut r = common::report("big");
+    r.case_text = (0..40_000).map(|k| format!("{k},{}\n", k * 7)).collect();
+    assert!(r.case_text.len() > 400_000);
+    Hdf5Writer::new().write(&r, dir.path()).unwrap();
+    let f = hdf5_metno::File::open(dir.path().join("big.h5")).unwrap();
+    let back: hdf5_metno::types::VarLenUnicode =
+        f.attr("case_text").unwrap().read_scalar().unwrap();
+    assert_eq!(back.as_str(), r.case_text);
+}
