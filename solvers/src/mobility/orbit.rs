@@ -46,9 +46,11 @@ pub struct OrbitParams {
     pub relative_tolerance: f64,
     /// Absolute tolerance of the adaptive integrator (ε is O(1)).
     pub absolute_tolerance: f64,
-    /// Periodicity: max_t |ε(t) − ε(t − τ)| below this ends the run.
+    /// Periodicity: max_t |ε(t) − ε(t − τ)| below this ends the run. `f64::INFINITY` switches
+    /// the check off: exactly `max_cycles` cycles are integrated and the last one is reported
+    /// (a fixed-length run, e.g. the paper's single simulated cycle, or a benchmark).
     pub periodicity_tolerance: f64,
-    /// At most this many cycles.
+    /// At most this many cycles (≥ 2 with a periodicity check, ≥ 1 without).
     pub max_cycles: usize,
     /// Film collapse threshold on |ε| (< 1).
     pub eccentricity_limit: f64,
@@ -84,13 +86,16 @@ impl OrbitParams {
         for (n, v) in [
             ("relative_tolerance", self.relative_tolerance),
             ("absolute_tolerance", self.absolute_tolerance),
-            ("periodicity_tolerance", self.periodicity_tolerance),
         ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(bad(n, v));
             }
         }
-        if self.max_cycles < 2 {
+        let fixed_length = self.periodicity_tolerance == f64::INFINITY;
+        if self.periodicity_tolerance.is_nan() || self.periodicity_tolerance <= 0.0 {
+            return Err(bad("periodicity_tolerance", self.periodicity_tolerance));
+        }
+        if self.max_cycles < if fixed_length { 1 } else { 2 } {
             return Err(bad("max_cycles", self.max_cycles as f64));
         }
         if !(self.eccentricity_limit > 0.0 && self.eccentricity_limit < 1.0) {
@@ -306,7 +311,8 @@ pub fn solve_orbit<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
                 .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
                 .fold(0.0, f64::max);
         }
-        let converged = change < params.periodicity_tolerance;
+        let converged = change < params.periodicity_tolerance
+            || (params.periodicity_tolerance == f64::INFINITY && cycle == params.max_cycles);
         if converged || cycle == params.max_cycles {
             if !converged {
                 return Err(MobilityError::NotPeriodic {
