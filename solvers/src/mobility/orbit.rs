@@ -311,8 +311,11 @@ pub fn solve_orbit<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
                 .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
                 .fold(0.0, f64::max);
         }
-        let converged = change < params.periodicity_tolerance
-            || (params.periodicity_tolerance == f64::INFINITY && cycle == params.max_cycles);
+        let converged = if params.periodicity_tolerance == f64::INFINITY {
+            cycle == params.max_cycles // fixed-length run
+        } else {
+            change < params.periodicity_tolerance
+        };
         if converged || cycle == params.max_cycles {
             if !converged {
                 return Err(MobilityError::NotPeriodic {
