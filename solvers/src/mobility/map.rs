@@ -140,10 +140,8 @@ pub struct MobilityMap {
     npsi: usize,
     ds: f64,
     dchi: f64,
-    /// ln(|M|/|M_B|) at node (i, j), index i * npsi + j.
-    ln_m: Vec<f64>,
-    /// β − β_B at node (i, j).
-    beta: Vec<f64>,
+    /// (ln(|M|/|M_B|), β − β_B) at node (i, j), index i * npsi + j.
+    nodes: Vec<[f64; 2]>,
 }
 
 impl MobilityMap {
@@ -174,15 +172,13 @@ impl MobilityMap {
         let booker = BookerShortBearing {
             length_to_diameter: ld,
         };
-        let mut ln_m = vec![0.0; ns * npsi];
-        let mut beta = vec![0.0; ns * npsi];
+        let mut nodes = vec![[0.0; 2]; ns * npsi];
         for i in 0..ns {
             let e = 1.0 - (-(i as f64) * ds).exp();
             for j in 0..npsi {
                 if i == 0 && j > 0 {
                     // ε = 0 is one point: copy it.
-                    ln_m[j] = ln_m[0];
-                    beta[j] = beta[0];
+                    nodes[j] = nodes[0];
                     continue;
                 }
                 let psi = psi_of_chi(j as f64 * dchi);
@@ -204,8 +200,10 @@ impl MobilityMap {
                 }
                 // M = û/|Z|: |M| = 1/Z_x, β = direction of û; stored relative to Booker.
                 let mb = booker.mobility(eps[0], eps[1]);
-                ln_m[i * npsi + j] = -zx.ln() - mb[0].hypot(mb[1]).ln();
-                beta[i * npsi + j] = wrap_pi(u[1].atan2(u[0]) - mb[1].atan2(mb[0]));
+                nodes[i * npsi + j] = [
+                    -zx.ln() - mb[0].hypot(mb[1]).ln(),
+                    wrap_pi(u[1].atan2(u[0]) - mb[1].atan2(mb[0])),
+                ];
             }
         }
         Ok(Self {
@@ -215,13 +213,12 @@ impl MobilityMap {
             npsi,
             ds,
             dchi,
-            ln_m,
-            beta,
+            nodes,
         })
     }
 
-    /// Value of a node field at (i, j), j extended by mirror symmetry (`odd` for β).
-    fn node(&self, field: &[f64], i: isize, j: isize, odd: bool) -> f64 {
+    /// Node values at (i, j), j extended by mirror symmetry (the angle correction is odd).
+    fn node(&self, i: isize, j: isize) -> [f64; 2] {
         let last = (self.npsi - 1) as isize;
         let (jj, flip) = if j < 0 {
             (-j, true)
@@ -231,38 +228,56 @@ impl MobilityMap {
             (j, false)
         };
         let i = i.clamp(0, self.ns as isize - 1) as usize;
-        let v = field[i * self.npsi + jj as usize];
-        if flip && odd { -v } else { v }
+        let v = self.nodes[i * self.npsi + jj as usize];
+        if flip { [v[0], -v[1]] } else { v }
     }
 
-    /// Tensor-product cubic Hermite (Catmull–Rom) interpolation of a node field at (s, χ).
-    fn interp(&self, field: &[f64], s: f64, chi: f64, odd: bool) -> f64 {
+    /// Tensor-product cubic Hermite (Catmull–Rom) interpolation of both node fields at (s, χ).
+    fn interp(&self, s: f64, chi: f64) -> [f64; 2] {
         let x = (s / self.ds).clamp(0.0, (self.ns - 1) as f64);
         let y = (chi / self.dchi).clamp(0.0, (self.npsi - 1) as f64);
         let i = (x.floor() as isize).min(self.ns as isize - 2);
         let j = (y.floor() as isize).min(self.npsi as isize - 2);
         let (tx, ty) = (x - i as f64, y - j as f64);
-        // Interpolate along ψ on the rows i-1 … i+2, then along s.
-        let along_psi = |ii: isize| -> f64 {
-            let p = |jj: isize| self.node(field, ii, jj, odd);
-            hermite(p(j - 1), p(j), p(j + 1), p(j + 2), ty)
+        // Interpolate along χ on the rows i-1 … i+2, then along s.
+        let wy = catmull_rom_weights(ty);
+        let row = |ii: isize| -> [f64; 2] {
+            let mut acc = [0.0; 2];
+            for (k, w) in wy.iter().enumerate() {
+                let v = self.node(ii, j - 1 + k as isize);
+                acc[0] += w * v[0];
+                acc[1] += w * v[1];
+            }
+            acc
         };
         let last = self.ns as isize - 1;
-        let r1 = along_psi(i);
-        let r2 = along_psi(i + 1);
+        let r1 = row(i);
+        let r2 = row(i + 1);
         // At the ε ends the missing neighbour is extrapolated quadratically (r0 = 3r1 − 3r2 + r3),
         // which makes the end slope the second-order one-sided difference.
+        let extrapolate = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+            [
+                3.0 * a[0] - 3.0 * b[0] + c[0],
+                3.0 * a[1] - 3.0 * b[1] + c[1],
+            ]
+        };
         let r0 = if i == 0 {
-            3.0 * r1 - 3.0 * r2 + along_psi(i + 2)
+            extrapolate(r1, r2, row(i + 2))
         } else {
-            along_psi(i - 1)
+            row(i - 1)
         };
         let r3 = if i + 1 == last {
-            3.0 * r2 - 3.0 * r1 + along_psi(i - 1)
+            extrapolate(r2, r1, row(i - 1))
         } else {
-            along_psi(i + 2)
+            row(i + 2)
         };
-        hermite(r0, r1, r2, r3, tx)
+        let wx = catmull_rom_weights(tx);
+        let mut out = [0.0; 2];
+        for (w, r) in wx.iter().zip([r0, r1, r2, r3]) {
+            out[0] += w * r[0];
+            out[1] += w * r[1];
+        }
+        out
     }
 
     /// Largest tabulated ε.
@@ -287,16 +302,17 @@ fn wrap_pi(a: f64) -> f64 {
     if r <= -PI { r + 2.0 * PI } else { r }
 }
 
-/// Cubic Hermite on [p1, p2] with Catmull–Rom slopes (p2 − p0)/2, (p3 − p1)/2, t ∈ [0, 1].
-fn hermite(p0: f64, p1: f64, p2: f64, p3: f64, t: f64) -> f64 {
-    let m1 = 0.5 * (p2 - p0);
-    let m2 = 0.5 * (p3 - p1);
+/// Weights of p0 … p3 in the cubic Hermite on [p1, p2] with Catmull–Rom slopes (p2 − p0)/2 and
+/// (p3 − p1)/2, t ∈ [0, 1].
+fn catmull_rom_weights(t: f64) -> [f64; 4] {
     let t2 = t * t;
     let t3 = t2 * t;
-    (2.0 * t3 - 3.0 * t2 + 1.0) * p1
-        + (t3 - 2.0 * t2 + t) * m1
-        + (-2.0 * t3 + 3.0 * t2) * p2
-        + (t3 - t2) * m2
+    [
+        -0.5 * t + t2 - 0.5 * t3,
+        1.0 - 2.5 * t2 + 1.5 * t3,
+        0.5 * t + 2.0 * t2 - 1.5 * t3,
+        -0.5 * t2 + 0.5 * t3,
+    ]
 }
 
 impl MobilityModel for MobilityMap {
@@ -309,20 +325,26 @@ impl MobilityModel for MobilityMap {
     }
 
     fn mobility(&self, zeta: f64, kappa: f64) -> [f64; 2] {
-        let e = zeta.hypot(kappa).min(self.max_eccentricity);
+        let r = zeta.hypot(kappa);
+        let e = r.min(self.max_eccentricity);
+        let scale = if r > 0.0 { e / r } else { 1.0 };
         let s = -(1.0 - e).ln();
-        let psi = kappa.abs().atan2(zeta);
-        let chi = chi_of_psi(psi);
-        // Booker's closed form at the same point (κ ≥ 0 half), times the tabulated correction.
-        let (zr, kr) = (e * psi.cos(), e * psi.sin());
+        let (zr, kr) = (zeta * scale, kappa.abs() * scale);
+        let chi = chi_of_psi(kr.atan2(zr));
+        // Booker's closed form at the same point (κ ≥ 0 half), scaled by e^{Δln|M|} and turned
+        // by Δβ.
         let mb = BookerShortBearing {
             length_to_diameter: self.length_to_diameter,
         }
         .mobility(zr, kr);
-        let m = mb[0].hypot(mb[1]) * self.interp(&self.ln_m, s, chi, false).exp();
-        let b = mb[1].atan2(mb[0]) + self.interp(&self.beta, s, chi, true);
+        let [dln, dbeta] = self.interp(s, chi);
+        let g = dln.exp();
+        let (sn, cs) = dbeta.sin_cos();
         let sign = if kappa < 0.0 { -1.0 } else { 1.0 };
-        [m * b.cos(), sign * m * b.sin()]
+        [
+            g * (mb[0] * cs - mb[1] * sn),
+            sign * g * (mb[0] * sn + mb[1] * cs),
+        ]
     }
 }
 

@@ -48,9 +48,10 @@
 //!   M = û / (2 (L/D)² |J(û)|)     with the direction û chosen so that J(û) ∥ ζ̂
 //! ```
 //!
-//! (the factor 2(L/D)² of seed 000 eqs. 25–26). [`ExactShortBearing`] finds û by a bracketed root
-//! search on the cross-load component of J (J·û > 0 always, so the root lies in α ∈ (−π/2, π/2)
-//! of the load frame and is bracketed by the end points). [`BookerShortBearing`] is Booker's
+//! (the factor 2(L/D)² of seed 000 eqs. 25–26). [`ExactShortBearing`] finds û by Newton's method
+//! on the cross-load component of J, started from Booker's direction, with the analytic
+//! derivative and the bracket α ∈ (−π/2, π/2) of the load frame as safeguard (J·û > 0 always,
+//! so the root lies inside it). [`BookerShortBearing`] is Booker's
 //! (1971) closed-form approximation as printed in seed 000, eqs. 28–29:
 //!
 //! ```text
@@ -101,23 +102,75 @@ impl MobilityModel for ExactShortBearing {
 
     fn mobility(&self, zeta: f64, kappa: f64) -> [f64; 2] {
         let ld2 = self.length_to_diameter * self.length_to_diameter;
-        let (u, j) = invert_squeeze(|u| short_bearing_squeeze_integral([zeta, kappa], u));
+        let (u, j) = exact_inversion(zeta, kappa);
         let scale = 1.0 / (2.0 * ld2 * j);
         [u[0] * scale, u[1] * scale]
     }
 }
 
-/// Find the unit velocity û (load frame, load along +x) whose squeeze force J(û) is parallel to
-/// +x; returns (û, J_x(û)). `squeeze` must satisfy J(û)·û > 0 (true for every pure-squeeze
-/// film), which brackets the root in α ∈ (−π/2, π/2): J_y < 0 at α = −π/2 and > 0 at α = π/2.
-pub(crate) fn invert_squeeze(squeeze: impl Fn([f64; 2]) -> [f64; 2]) -> ([f64; 2], f64) {
-    match invert_squeeze_fallible(|u| Ok::<_, std::convert::Infallible>(squeeze(u))) {
-        Ok(r) => r,
-        Err(never) => match never {},
-    }
+/// The squeeze matrix K(α) in the load frame: J(û) = K û for every û in the half plane of the
+/// film region fixed by the direction α (K holds Booker's integrals over α ± π/2).
+fn squeeze_matrix(eps: [f64; 2], alpha: f64) -> [[f64; 2]; 2] {
+    let e = eps[0].hypot(eps[1]);
+    let (cx, sx) = if e > 0.0 {
+        (eps[0] / e, eps[1] / e)
+    } else {
+        (1.0, 0.0)
+    };
+    let a_rel = alpha - sx.atan2(cx);
+    let [i02, i11, i20] = booker_integrals(e, a_rel - FRAC_PI_2, a_rel + FRAC_PI_2);
+    // Rotate the symmetric matrix [[i02, i11], [i11, i20]] from the ε frame to the load frame.
+    let (c2, s2, cs) = (cx * cx, sx * sx, cx * sx);
+    let kxx = c2 * i02 - 2.0 * cs * i11 + s2 * i20;
+    let kyy = s2 * i02 + 2.0 * cs * i11 + c2 * i20;
+    let kxy = cs * (i02 - i20) + (c2 - s2) * i11;
+    [[kxx, kxy], [kxy, kyy]]
 }
 
-/// [`invert_squeeze`] for a squeeze-force provider that can fail (a numerical film solver).
+/// Exact inversion for the short bearing: Newton on f(α) = J_y(û(α)) with the analytic
+/// derivative f'(α) = (K û⊥)_y — the boundary terms of the moving film region vanish because
+/// the integrand (û·n) is zero there — started from Booker's direction and safeguarded by the
+/// bracket (−π/2, π/2) with bisection. Returns (û, J_x(û)).
+fn exact_inversion(zeta: f64, kappa: f64) -> ([f64; 2], f64) {
+    let eps = [zeta, kappa];
+    let mb = BookerShortBearing {
+        length_to_diameter: 1.0,
+    }
+    .mobility(zeta, kappa);
+    let (mut lo, mut hi) = (-FRAC_PI_2, FRAC_PI_2);
+    let mut a = mb[1].atan2(mb[0]).clamp(lo + 1e-9, hi - 1e-9);
+    for _ in 0..100 {
+        let k = squeeze_matrix(eps, a);
+        let (c, s) = (a.cos(), a.sin());
+        let f = k[1][0] * c + k[1][1] * s;
+        let df = -k[1][0] * s + k[1][1] * c;
+        if f == 0.0 {
+            break;
+        }
+        if f < 0.0 {
+            lo = a;
+        } else {
+            hi = a;
+        }
+        let mut next = a - f / df;
+        if !(next.is_finite() && next >= lo && next <= hi) {
+            next = 0.5 * (lo + hi);
+        }
+        let done = (next - a).abs() < 1e-14;
+        a = next;
+        if done || hi - lo < 1e-15 {
+            break;
+        }
+    }
+    let u = [a.cos(), a.sin()];
+    let k = squeeze_matrix(eps, a);
+    (u, k[0][0] * u[0] + k[0][1] * u[1])
+}
+
+/// Find the unit velocity û (load frame, load along +x) whose squeeze load J(û) (or Z(û)) is
+/// parallel to +x, for a provider that may fail (a numerical film solver); returns (û, J_x(û)).
+/// The provider must satisfy J(û)·û > 0 (true for every pure-squeeze film), which brackets the
+/// root in α ∈ (−π/2, π/2): J_y < 0 at α = −π/2 and > 0 at α = π/2.
 pub(crate) fn invert_squeeze_fallible<E>(
     mut squeeze: impl FnMut([f64; 2]) -> Result<[f64; 2], E>,
 ) -> Result<([f64; 2], f64), E> {
