@@ -49,13 +49,19 @@
 //! - [`performance`]: h_min, p_max, side flow and power loss of the mobility answer, by stated
 //!   closed forms.
 //! - [`orbit`]: adaptive Dormand–Prince integration of the orbit to a periodic cycle.
+//! - [`compare`]: cycle metrics (mean ε, minimum h_min, mean flow, mean power loss) and the
+//!   mobility answer's deviation in % from a reference answer (Yu & Sawicki's comparison).
 
+pub mod compare;
 pub mod load;
 pub mod map;
 pub mod orbit;
 pub mod performance;
 pub mod short_bearing;
 
+pub use compare::{
+    CycleMetrics, CycleSeries, DeviationReport, OrbitColumns, compare_cycles, cycle_metrics,
+};
 pub use load::{LoadInterpolation, LoadTableError, PeriodicLoad, TabulatedLoad};
 pub use map::{
     MobilityMap, MobilityMapCache, MobilityMapError, MobilityMapParams, PureSqueezeFilm,
@@ -184,6 +190,13 @@ pub enum MobilityError {
         quantity: &'static str,
         time: f64,
         crank_angle_deg: f64,
+    },
+    /// A sample of a series handed in for comparison is not finite.
+    #[error("non-finite {quantity} at sample {index}: {value}")]
+    NonFiniteSample {
+        quantity: &'static str,
+        index: usize,
+        value: f64,
     },
     /// The orbit did not become periodic within the allowed number of cycles.
     #[error(
