@@ -11,5 +11,8 @@
 //! Modules
 //! - [`tridiagonal`]: the line kernels of the ADI sweeps: Thomas for Dirichlet lines and Yu &
 //!   Sawicki's modified Thomas for periodic (circumferential) lines.
+//! - [`mobility`]: Booker's mobility method (short-bearing closed forms, finite-length mobility
+//!   map, adaptive orbit integration to a periodic cycle, h_min / p_max / flow / power loss).
 
+pub mod mobility;
 pub mod tridiagonal;
