@@ -1,0 +1,196 @@
+//! The HDF5 file read back by xarray (h5netcdf) and pyvista in a fresh virtualenv, and the
+//! Python plotting example run on it. The data is the writer test fixture of `common`.
+//!
+//! These tests spawn Python processes, so they live in their own test binary: a child forked
+//! while another test thread has an HDF5 file open inherits that descriptor and its `flock`
+//! lock (HDF5 does not open with `O_CLOEXEC`), and a later open of the same file in this
+//! process then fails with EAGAIN. That race made CI fail once when the writers' tests shared
+//! a binary with these.
+
+mod common;
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+use std::time::Instant;
+
+use jbearing::output::{CaseReport, Hdf5Writer, Method, OutputWriter};
+
+/// Values the checker compares with what it reads, one line each: `key v1 v2 …`. f64 `Display`
+/// is the shortest string that parses back to the same f64, so the comparison can be exact.
+fn expected_values(r: &CaseReport) -> String {
+    let mut out = String::new();
+    let line = |out: &mut String, key: &str, v: &mut dyn Iterator<Item = f64>| {
+        out.push_str(key);
+        for x in v {
+            write!(out, " {x}").unwrap();
+        }
+        out.push('\n');
+    };
+    for m in &r.methods {
+        let g = m.method.as_str();
+        line(&mut out, &format!("{g}/time"), &mut m.time.iter().copied());
+        line(
+            &mut out,
+            &format!("{g}/crank_angle"),
+            &mut m.crank_angle.iter().copied(),
+        );
+        for s in &m.series {
+            line(
+                &mut out,
+                &format!("{g}/{}", s.name),
+                &mut s.values.iter().copied(),
+            );
+        }
+        if let Some(f) = &m.fields {
+            line(
+                &mut out,
+                &format!("{g}/fields/time"),
+                &mut f.time.iter().copied(),
+            );
+            line(
+                &mut out,
+                &format!("{g}/fields/theta"),
+                &mut f.theta.iter().copied(),
+            );
+            line(&mut out, &format!("{g}/fields/z"), &mut f.z.iter().copied());
+            for fld in &f.fields {
+                line(
+                    &mut out,
+                    &format!("{g}/fields/{}", fld.name),
+                    &mut fld.values.iter().copied(),
+                );
+            }
+        }
+    }
+    for row in &r.summary {
+        let v = Method::ALL.map(|m| row.value(m).unwrap_or(f64::NAN));
+        line(
+            &mut out,
+            &format!("summary/{}", row.name),
+            &mut v.into_iter(),
+        );
+    }
+    out
+}
+
+fn fixture_file(dir: &Path, name: &str) -> (CaseReport, PathBuf) {
+    let report = common::report(name);
+    let written = Hdf5Writer::new().write(&report, dir).expect("HDF5 written");
+    assert_eq!(written, vec![dir.join(format!("{name}.h5"))]);
+    (report, written[0].clone())
+}
+
+/// A virtualenv with examples/python/requirements.txt, created once per requirements content
+/// under the target directory (a clean clone gets a fresh one; reruns reuse it). The Python
+/// interpreter is `python3` from PATH, or `$JBEARING_PYTHON`.
+fn python_env() -> PathBuf {
+    static VENV: OnceLock<PathBuf> = OnceLock::new();
+    VENV.get_or_init(|| {
+        let start = Instant::now();
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let requirements = root.join("examples/python/requirements.txt");
+        let wanted = std::fs::read_to_string(&requirements).expect("requirements.txt");
+        let venv = Path::new(env!("CARGO_TARGET_TMPDIR")).join("python-venv");
+        let stamp = venv.join("jbearing-requirements.txt");
+        let python = venv.join("bin/python");
+        if std::fs::read_to_string(&stamp).ok().as_deref() == Some(wanted.as_str())
+            && python.exists()
+        {
+            return python;
+        }
+        let _ = std::fs::remove_dir_all(&venv);
+        let base = std::env::var("JBEARING_PYTHON").unwrap_or_else(|_| "python3".into());
+        run(
+            Command::new(&base).args(["-m", "venv"]).arg(&venv),
+            "python3 -m venv",
+        );
+        run(
+            Command::new(&python)
+                .args([
+                    "-m",
+                    "pip",
+                    "install",
+                    "--quiet",
+                    "--disable-pip-version-check",
+                    "-r",
+                ])
+                .arg(&requirements),
+            "pip install -r examples/python/requirements.txt",
+        );
+        std::fs::write(&stamp, wanted).unwrap();
+        eprintln!(
+            "python virtualenv created in {:.1} s: {}",
+            start.elapsed().as_secs_f64(),
+            venv.display()
+        );
+        python
+    })
+    .clone()
+}
+
+fn run(cmd: &mut Command, what: &str) -> String {
+    let out = cmd
+        .output()
+        .unwrap_or_else(|e| panic!("{what}: cannot start: {e} (run scripts/deps.sh)"));
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{what} failed ({}):\n--- stdout\n{stdout}\n--- stderr\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    stdout
+}
+
+#[test]
+fn hdf5_file_reads_back_in_xarray_and_pyvista() {
+    let python = python_env();
+    let dir = tempfile::tempdir().unwrap();
+    let (report, path) = fixture_file(dir.path(), "short_bearing_fixture");
+    let expected = dir.path().join("expected.txt");
+    std::fs::write(&expected, expected_values(&report)).unwrap();
+    let checker = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_output.py");
+    let start = Instant::now();
+    let out = run(
+        Command::new(&python)
+            // Readers only: h5py, h5netcdf and VTK's own HDF5 open the same file in one process;
+            // HDF5's advisory file locks make those opens race (errno 11).
+            .env("HDF5_USE_FILE_LOCKING", "FALSE")
+            .arg(&checker)
+            .arg(&path)
+            .arg(&expected),
+        "tests/python/check_output.py",
+    );
+    eprintln!("checker ran in {:.1} s", start.elapsed().as_secs_f64());
+    assert!(out.contains("all checks passed"), "{out}");
+}
+
+#[test]
+fn python_example_plots_from_the_file() {
+    let python = python_env();
+    let dir = tempfile::tempdir().unwrap();
+    let (_, path) = fixture_file(dir.path(), "example");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/python/plot_case.py");
+    let out = run(
+        Command::new(&python)
+            .env("HDF5_USE_FILE_LOCKING", "FALSE")
+            .args(["-W", "error"])
+            .arg(&script)
+            .arg(&path)
+            .arg("--out")
+            .arg(dir.path()),
+        "examples/python/plot_case.py",
+    );
+    for png in ["example_series.png", "example_pressure.png"] {
+        let bytes = std::fs::read(dir.path().join(png)).unwrap_or_else(|e| panic!("{png}: {e}"));
+        assert!(
+            bytes.starts_with(b"\x89PNG\r\n\x1a\n"),
+            "{png} is not a PNG"
+        );
+    }
+    // The example prints the surface it read through pyvista: one point per (θ, z) node.
+    let points = common::N_THETA * common::N_Z;
+    assert!(out.contains(&format!("surface: {points} points")), "{out}");
+}
