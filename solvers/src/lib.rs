@@ -9,10 +9,13 @@
 //! runs reaches the caller through observer traits, never through a print.
 //!
 //! Modules
+//! - [`closed_form`]: the seeds' closed-form film models for a moving journal (short and long
+//!   bearing, Sommerfeld and Gumbel films, Pinkus–Sternlicht) and their static equilibrium.
 //! - [`tridiagonal`]: the line kernels of the ADI sweeps: Thomas for Dirichlet lines and Yu &
 //!   Sawicki's modified Thomas for periodic (circumferential) lines.
 //! - [`mobility`]: Booker's mobility method (short-bearing closed forms, finite-length mobility
 //!   map, adaptive orbit integration to a periodic cycle, h_min / p_max / flow / power loss).
 
+pub mod closed_form;
 pub mod mobility;
 pub mod tridiagonal;
