@@ -15,7 +15,9 @@
 //!   Sawicki's modified Thomas for periodic (circumferential) lines.
 //! - [`mobility`]: Booker's mobility method (short-bearing closed forms, finite-length mobility
 //!   map, adaptive orbit integration to a periodic cycle, h_min / p_max / flow / power loss).
+//! - [`ritz`]: the Ritz method of seed 001 for the finite bearing with a film on 0 … π.
 
 pub mod closed_form;
 pub mod mobility;
+pub mod ritz;
 pub mod tridiagonal;
