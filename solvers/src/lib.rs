@@ -13,6 +13,10 @@
 //!   Sawicki's modified Thomas for periodic (circumferential) lines.
 //! - [`mobility`]: Booker's mobility method (short-bearing closed forms, finite-length mobility
 //!   map, adaptive orbit integration to a periodic cycle, h_min / p_max / flow / power loss).
+//! - [`slider_crank`]: a single-cylinder slider-crank compressor (polytropic cylinder cycle,
+//!   two-mass rod) giving the main- and rod-bearing loads, the rod's angular velocity and the rod
+//!   bearing's feed pressure through the crank drilling (the compressor cases of Yu & Sawicki).
 
 pub mod mobility;
+pub mod slider_crank;
 pub mod tridiagonal;
