@@ -29,10 +29,12 @@ pub enum CaseError {
         source: std::io::Error,
     },
     /// Not valid TOML.
-    #[error("{}:{line}:{column}: TOML syntax error: {message}", file.display())]
+    #[error("{}:{line}:{column}: {key}: TOML syntax error: {message}", file.display())]
     Syntax {
         /// The file.
         file: PathBuf,
+        /// The key on the offending line (the text before `=`), or the line's text.
+        key: String,
         /// 1-based line.
         line: usize,
         /// 1-based column.
@@ -132,41 +134,42 @@ impl<'a> Locator<'a> {
         best.map_or(1, |o| line_column(self.text, o).0)
     }
 
-    /// The dotted path of the deepest key whose key or value contains the byte range `span`.
+    /// The dotted path of the innermost key whose key or value contains the byte range `span`.
     pub fn key_at(&self, span: &Range<usize>) -> Option<String> {
         let root = self.root.as_ref()?;
-        let mut path = String::new();
-        let mut table: &DeTable<'_> = root.get_ref();
-        'outer: loop {
-            for (k, v) in table.iter() {
-                let inside = |r: Range<usize>| r.start <= span.start && span.end <= r.end;
-                if inside(k.span()) || inside(v.span()) {
-                    if !path.is_empty() {
-                        path.push('.');
-                    }
-                    path.push_str(k.get_ref());
-                    match v.get_ref() {
-                        DeValue::Table(t) => {
-                            table = t;
-                            continue 'outer;
-                        }
-                        DeValue::Array(a) => {
-                            for (i, item) in a.iter().enumerate() {
-                                if inside(item.span()) {
-                                    path.push_str(&format!("[{i}]"));
-                                    if let DeValue::Table(t) = item.get_ref() {
-                                        table = t;
-                                        continue 'outer;
-                                    }
-                                }
-                            }
-                            return Some(path);
-                        }
-                        _ => return Some(path),
+        let mut entries = Vec::new();
+        flatten(root.get_ref(), "", &mut entries);
+        let inside = |r: &Range<usize>| r.start <= span.start && span.end <= r.end;
+        entries
+            .into_iter()
+            .filter(|(_, k, v)| inside(k) || inside(v))
+            .min_by_key(|(_, k, v)| if inside(k) { k.len() } else { v.len() })
+            .map(|(p, _, _)| p)
+    }
+}
+
+/// Every key of `table` (recursively, arrays of tables indexed) with its key and value spans.
+fn flatten(table: &DeTable<'_>, prefix: &str, out: &mut Vec<(String, Range<usize>, Range<usize>)>) {
+    for (k, v) in table.iter() {
+        let path = if prefix.is_empty() {
+            k.get_ref().to_string()
+        } else {
+            format!("{prefix}.{}", k.get_ref())
+        };
+        out.push((path.clone(), k.span(), v.span()));
+        match v.get_ref() {
+            DeValue::Table(t) => flatten(t, &path, out),
+            DeValue::Array(a) => {
+                for (i, item) in a.iter().enumerate() {
+                    let item: &Spanned<DeValue<'_>> = item;
+                    let ip = format!("{path}[{i}]");
+                    out.push((ip.clone(), item.span(), item.span()));
+                    if let DeValue::Table(t) = item.get_ref() {
+                        flatten(t, &ip, out);
                     }
                 }
             }
-            return (!path.is_empty()).then_some(path);
+            _ => {}
         }
     }
 }

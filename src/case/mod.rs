@@ -389,8 +389,15 @@ impl<'a> Ctx<'a> {
             let (line, column) = e
                 .span()
                 .map_or((1, 1), |s| error::line_column(self.text, s.start));
+            let key = self
+                .text
+                .lines()
+                .nth(line - 1)
+                .map(|l| l.split('=').next().unwrap_or(l).trim().to_string())
+                .unwrap_or_default();
             return Err(CaseError::Syntax {
                 file: self.file.clone(),
+                key,
                 line,
                 column,
                 message: e.message().trim().to_string(),
@@ -484,8 +491,12 @@ impl<'a> Ctx<'a> {
             key: key.to_string(),
             line: self.locator.line_of(key),
         };
-        let text = std::fs::read_to_string(&csv_path)
-            .map_err(|e| csv_err(0, format!("cannot read the CSV file: {e}")))?;
+        let text = std::fs::read_to_string(&csv_path).map_err(|e| {
+            self.err(
+                key,
+                format!("cannot read the CSV file '{}': {e}", csv_path.display()),
+            )
+        })?;
         let mut lines = text
             .lines()
             .enumerate()
