@@ -13,6 +13,9 @@
 //!   Sawicki's modified Thomas for periodic (circumferential) lines.
 //! - [`mobility`]: Booker's mobility method (short-bearing closed forms, finite-length mobility
 //!   map, adaptive orbit integration to a periodic cycle, h_min / p_max / flow / power loss).
+//! - [`squeeze_film`]: the finite-length pure-squeeze film under the Reynolds condition
+//!   (finite differences + active set), the source of the finite-length mobility map.
 
 pub mod mobility;
+pub mod squeeze_film;
 pub mod tridiagonal;
