@@ -1,9 +1,8 @@
 //! Criterion benches of jbearing, one binary: kernel, sweep and cycle groups.
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{criterion_group, criterion_main};
 
 mod mobility;
+mod reynolds;
 
-fn placeholder(_c: &mut Criterion) {}
-
-criterion_group!(benches, placeholder, mobility::bench);
+criterion_group!(benches, mobility::bench, reynolds::bench);
 criterion_main!(benches);

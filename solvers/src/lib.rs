@@ -13,6 +13,11 @@
 //!   Sawicki's modified Thomas for periodic (circumferential) lines.
 //! - [`mobility`]: Booker's mobility method (short-bearing closed forms, finite-length mobility
 //!   map, adaptive orbit integration to a periodic cycle, h_min / p_max / flow / power loss).
+//! - [`reynolds`]: the universal (Elrod–Vijayaraghavan, mass-conserving) Reynolds equation on a
+//!   θ × z grid: steady and time-stepped films, grooves and supply cut-off, ADI-preconditioned
+//!   Krylov solve with a sparse-LU oracle, outputs (force, h_min, p_max, flows, power loss) and
+//!   the steady load → eccentricity Newton solve.
 
 pub mod mobility;
+pub mod reynolds;
 pub mod tridiagonal;
