@@ -3,6 +3,7 @@ use criterion::{criterion_group, criterion_main};
 
 mod kernel;
 mod mobility;
+mod reynolds;
 
-criterion_group!(benches, kernel::bench, mobility::bench);
+criterion_group!(benches, kernel::bench, mobility::bench, reynolds::bench);
 criterion_main!(benches);
