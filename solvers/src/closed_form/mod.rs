@@ -277,6 +277,26 @@ impl ClosedFormModel {
     }
 }
 
+impl std::fmt::Display for ClosedFormModel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for ClosedFormModel {
+    type Err = ClosedFormError;
+
+    /// Parse a model from its [`ClosedFormModel::name`] (for case files and the CLI).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        ClosedFormModel::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| ClosedFormError::UnknownModel {
+                name: s.to_string(),
+            })
+    }
+}
+
 /// What can go wrong in the closed-form models.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum ClosedFormError {
@@ -296,6 +316,11 @@ pub enum ClosedFormError {
         model: &'static str,
         eccentricity_ratio: f64,
     },
+    /// A model name that is not one of [`ClosedFormModel::name`].
+    #[error(
+        "unknown closed-form model '{name}' (known: long_sommerfeld, long_gumbel, short_sommerfeld, short_gumbel, short_gumbel_moving_film, pinkus_sternlicht)"
+    )]
+    UnknownModel { name: String },
     /// No load capacity: the film cannot carry a load (ω = 0 in a steady state).
     #[error("no load capacity for a steady journal: relative speed ω = {relative_speed} rad/s")]
     NoLoadCapacity { relative_speed: f64 },
@@ -445,6 +470,17 @@ mod tests {
         // h_min lies along ε: ψ = π there.
         let psi = m.angle_from_max_film(m.line_of_centres_angle);
         assert!((psi - PI).abs() < 1e-14);
+    }
+
+    #[test]
+    fn model_names_round_trip() {
+        for m in ClosedFormModel::ALL {
+            assert_eq!(m.to_string().parse::<ClosedFormModel>().unwrap(), m);
+        }
+        assert!(matches!(
+            "ocvirk".parse::<ClosedFormModel>(),
+            Err(ClosedFormError::UnknownModel { .. })
+        ));
     }
 
     #[test]
