@@ -62,16 +62,20 @@
 //!   |ε̇| (as the two cases ε̇ > 0 / ε̇ < 0 suggest) the force is continuous and the squeeze part
 //!   opposes the motion in both cases; that reading is used (see [`pinkus_sternlicht`]).
 //!
+//! [`ClosedFormFilm`] wraps any model as a film of the inverse solver (load history → orbit).
+//!
 //! Fixed-region Gumbel models (ShortGumbel, LongGumbel) keep the seeds' region 0 … π, which is
 //! the converging half only for ω' > 0; [`static_equilibrium`] mirrors the problem for ω < 0.
 
 pub mod equilibrium;
+pub mod film_model;
 pub mod long;
 pub mod pinkus_sternlicht;
 pub mod quadrature;
 pub mod short;
 
 pub use equilibrium::{EquilibriumSolution, static_equilibrium};
+pub use film_model::{ClosedFormFilm, ClosedFormState};
 
 use std::f64::consts::{PI, TAU};
 use thiserror::Error;
