@@ -979,3 +979,192 @@ fn broyden(m: &mut [[f64; 2]; 2], s: [f64; 2], y: [f64; 2]) {
         m[i][1] += d * s[1];
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::load::{ConstantLoad, FnLoad, OperatingHistory};
+    use std::f64::consts::TAU;
+
+    /// A linear spring–damper film: F = −k ε − d ε̇ (backward Euler velocity), optionally
+    /// saturating or poisoned with NaN.
+    #[derive(Clone)]
+    struct Spring {
+        k: f64,
+        d: f64,
+        nan_beyond: f64,
+    }
+
+    impl FilmModel for Spring {
+        type State = [f64; 2];
+        fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
+            e
+        }
+        fn step(
+            &mut self,
+            s: &[f64; 2],
+            e: [f64; 2],
+            dt: f64,
+            _c: &FilmConditions,
+        ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
+            let mut f = [0.0; 2];
+            for i in 0..2 {
+                f[i] = -self.k * e[i] - self.d * (e[i] - s[i]) / dt;
+            }
+            if norm(e) > self.nan_beyond {
+                f[0] = f64::NAN;
+            }
+            Ok((
+                FilmResponse {
+                    film_force: f,
+                    min_film_thickness: 1.0 - norm(e),
+                    power_loss: 1.0,
+                    ..Default::default()
+                },
+                e,
+            ))
+        }
+    }
+
+    fn history(w: [f64; 2]) -> OperatingHistory<ConstantLoad> {
+        OperatingHistory {
+            load: ConstantLoad {
+                load: w,
+                period: 1.0,
+            },
+            journal_speed: 1.0,
+            bearing_speed: 0.0,
+            feed_pressures: vec![],
+        }
+    }
+
+    struct Count(usize, usize);
+    impl InverseObserver for Count {
+        fn on_step(&mut self, p: &InverseProgress) {
+            assert!(p.residual.is_finite());
+            self.0 += 1;
+        }
+        fn on_cycle(&mut self, _c: usize, _e: f64, _f: f64) {
+            self.1 += 1;
+        }
+    }
+
+    #[test]
+    fn spring_equilibrium_by_both_jacobians() {
+        for jacobian in [JacobianMethod::FiniteDifference, JacobianMethod::Broyden] {
+            let mut film = Spring {
+                k: 100.0,
+                d: 0.1,
+                nan_beyond: 2.0,
+            };
+            let params = InverseParams {
+                jacobian,
+                step_deg: 10.0,
+                tolerance: 1e-10,
+                periodicity_tolerance: 1e-9,
+                ..Default::default()
+            };
+            let mut obs = Count(0, 0);
+            let sol = solve_inverse(&params, &history([30.0, -40.0]), &mut film, &mut obs).unwrap();
+            // F + W = 0 ⇔ ε = W/k = (0.3, −0.4) at rest; residual tolerance 1e-10.
+            let e = sol.steps.last().unwrap().eccentricity_ratio;
+            assert!(
+                (e[0] - 0.3).abs() < 1e-9 && (e[1] + 0.4).abs() < 1e-9,
+                "{e:?}"
+            );
+            assert!(sol.info.periodic);
+            assert_eq!(obs.0, sol.info.run_in_steps + 36 * sol.info.cycles);
+            assert_eq!(obs.1, sol.info.cycles);
+            assert_eq!(sol.steps.len(), 36);
+            assert!((sol.steps[35].crank_angle_deg - 360.0).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn a_load_beyond_the_film_is_collapse_with_numbers() {
+        // The spring carries at most k·1 = 100 N; 150 N pushes the journal to the wall.
+        let mut film = Spring {
+            k: 100.0,
+            d: 0.0,
+            nan_beyond: 2.0,
+        };
+        let err = solve_inverse(
+            &InverseParams::default(),
+            &history([150.0, 0.0]),
+            &mut film,
+            &mut NoObserver,
+        )
+        .unwrap_err();
+        match err {
+            InverseError::Collapse {
+                eccentricity,
+                residual,
+                time,
+                ..
+            } => {
+                assert!((0.999..1.0).contains(&eccentricity));
+                assert!(residual.is_finite() && time.is_finite());
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_nan_film_force_is_an_error_naming_the_trial() {
+        let mut film = Spring {
+            k: 100.0,
+            d: 0.0,
+            nan_beyond: 0.2,
+        };
+        let err = solve_inverse(
+            &InverseParams::default(),
+            &history([50.0, 0.0]),
+            &mut film,
+            &mut NoObserver,
+        )
+        .unwrap_err();
+        assert!(
+            matches!(
+                err,
+                InverseError::Film {
+                    source: FilmModelError::NonFinite { .. },
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+    }
+
+    #[test]
+    fn cycle_limit_gives_a_warning_not_an_error() {
+        // A spring with a long time constant (d/k = 10 periods) cannot settle in 2 cycles.
+        let mut film = Spring {
+            k: 100.0,
+            d: 1000.0,
+            nan_beyond: 2.0,
+        };
+        let load = OperatingHistory {
+            load: FnLoad {
+                period: 1.0,
+                load: |t: f64| [30.0 * (TAU * t).cos(), 0.0],
+            },
+            journal_speed: 1.0,
+            bearing_speed: 0.0,
+            feed_pressures: vec![],
+        };
+        let params = InverseParams {
+            max_cycles: 2,
+            step_deg: 10.0,
+            tolerance: 1e-10,
+            periodicity_tolerance: 1e-8,
+            ..Default::default()
+        };
+        let sol = solve_inverse(&params, &load, &mut film, &mut NoObserver).unwrap();
+        assert!(!sol.info.periodic);
+        assert!(matches!(
+            sol.info.warning,
+            Some(InverseWarning::NotPeriodic { cycles: 2, .. })
+        ));
+        assert!((sol.summary.mean_power_loss - 1.0).abs() < 1e-12);
+    }
+}
