@@ -843,6 +843,10 @@ fn newton<F: FilmModel + ?Sized>(
     let mut res = norm(r) / scale;
     let mut iterations = 0;
     let mut fresh = false;
+    // After a stall on a fresh Jacobian, one retry with a secant over a 100× wider difference
+    // step (≥ 1e-3): it averages over the small force jumps of a switching JFO film.
+    let mut wide_tried = false;
+    let mut fd_h = params.fd_step;
     loop {
         let e = norm(eps);
         if e >= params.collapse_eccentricity
@@ -889,7 +893,8 @@ fn newton<F: FilmModel + ?Sized>(
         }
         iterations += 1;
         if !jac.valid || params.jacobian == JacobianMethod::FiniteDifference {
-            jac.m = fd_jacobian(&mut eval, eps, resp.film_force, w, params.fd_step, stats)?;
+            jac.m = fd_jacobian(&mut eval, eps, resp.film_force, w, fd_h, stats)?;
+            fd_h = params.fd_step;
             jac.valid = true;
             fresh = true;
         }
@@ -952,6 +957,12 @@ fn newton<F: FilmModel + ?Sized>(
             lambda *= 0.5;
         }
         if !accepted {
+            if fresh && !wide_tried {
+                wide_tried = true;
+                fd_h = (100.0 * params.fd_step).max(1e-3);
+                jac.valid = false;
+                continue;
+            }
             if fresh {
                 stats.newton += iterations;
                 if res <= params.accept_tolerance {
