@@ -1,6 +1,7 @@
 //! Criterion benches of jbearing, one binary: kernel, sweep and cycle groups.
 use criterion::{Criterion, criterion_group, criterion_main};
 
+mod inverse;
 mod kernel;
 mod mobility;
 mod reynolds;
@@ -12,5 +13,5 @@ criterion_group! {
     config = Criterion::default().with_measurement(kernel::ThreadCpuTime);
     targets = kernel::bench
 }
-criterion_group!(benches, mobility::bench, reynolds::bench);
+criterion_group!(benches, mobility::bench, reynolds::bench, inverse::bench);
 criterion_main!(kernel_benches, benches);
