@@ -1,9 +1,8 @@
 //! Criterion benches of jbearing, one binary: kernel, sweep and cycle groups.
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{criterion_group, criterion_main};
 
+mod kernel;
 mod mobility;
 
-fn placeholder(_c: &mut Criterion) {}
-
-criterion_group!(benches, placeholder, mobility::bench);
+criterion_group!(benches, kernel::bench, mobility::bench);
 criterion_main!(benches);
