@@ -23,6 +23,8 @@
 //! - [`slider_crank`]: a single-cylinder slider-crank compressor (polytropic cylinder cycle,
 //!   two-mass rod) giving the main- and rod-bearing loads, the rod's angular velocity and the rod
 //!   bearing's feed pressure through the crank drilling (the compressor cases of Yu & Sawicki).
+//! - [`squeeze_film`]: the finite-length pure-squeeze film under the Reynolds condition
+//!   (finite differences + active set), the source of the finite-length mobility map.
 
 pub mod closed_form;
 pub mod inverse;
@@ -30,4 +32,5 @@ pub mod load;
 pub mod mobility;
 pub mod ritz;
 pub mod slider_crank;
+pub mod squeeze_film;
 pub mod tridiagonal;
