@@ -172,10 +172,12 @@ fn flores_transient_gumbel_films_settle_sommerfeld_films_keep_orbiting() {
             d0
         );
         use ClosedFormModel::*;
+        // Settled: within 0.5 % of the distance travelled (measured: 2.5e-9 … 1.1e-4 in ε, i.e.
+        // ≤ 0.1 %), against ≥ 30 % for the undamped full films (measured ~100 %).
         match model {
             // Undamped: the orbit does not close in on the equilibrium.
             ShortSommerfeld | LongSommerfeld => assert!(late_max > 0.3 * d0, "{model:?}"),
-            _ => assert!(late_max < 1e-3 * d0, "{model:?} not settled: {late_max:e}"),
+            _ => assert!(late_max < 5e-3 * d0, "{model:?} not settled: {late_max:e}"),
         }
         late.insert(model, late_max);
     }
