@@ -477,6 +477,67 @@ mod tests {
     }
 
     #[test]
+    fn forces_turn_with_the_line_of_centres_and_mirror_with_the_rotation() {
+        let p = ClosedFormParams {
+            radius: 0.01,
+            length: 0.02,
+            radial_clearance: 1e-4,
+            viscosity: 0.1,
+        };
+        let base = JournalMotion {
+            eccentricity_ratio: 0.55,
+            eccentricity_ratio_rate: -2.0,
+            line_of_centres_angle: 0.3,
+            line_of_centres_rate: 7.0,
+            relative_speed: 40.0,
+        };
+        for model in ClosedFormModel::ALL {
+            let f0 = film_force(model, &p, &base).unwrap();
+            let scale = f0.radial.hypot(f0.tangential);
+            // Rotation invariance: turning γ by α turns (F_x, F_y) by α, (F_r, F_t) unchanged.
+            let a = 1.9;
+            let turned = JournalMotion {
+                line_of_centres_angle: base.line_of_centres_angle + a,
+                ..base
+            };
+            let f1 = film_force(model, &p, &turned).unwrap();
+            let (s, c) = a.sin_cos();
+            let want = [
+                c * f0.cartesian[0] - s * f0.cartesian[1],
+                s * f0.cartesian[0] + c * f0.cartesian[1],
+            ];
+            for k in 0..2 {
+                assert!(
+                    (f1.cartesian[k] - want[k]).abs() < 1e-12 * scale,
+                    "{model:?}"
+                );
+            }
+            // Mirror y → −y (γ, γ̇, ω change sign): F_r stays, F_t changes sign — for the
+            // models whose film region follows the motion (not the fixed 0 … π Gumbel films).
+            if matches!(
+                model,
+                ClosedFormModel::ShortGumbel | ClosedFormModel::LongGumbel
+            ) {
+                continue;
+            }
+            let mirrored = JournalMotion {
+                line_of_centres_angle: -base.line_of_centres_angle,
+                line_of_centres_rate: -base.line_of_centres_rate,
+                relative_speed: -base.relative_speed,
+                ..base
+            };
+            let f2 = film_force(model, &p, &mirrored).unwrap();
+            assert!((f2.radial - f0.radial).abs() < 1e-12 * scale, "{model:?}");
+            assert!(
+                (f2.tangential + f0.tangential).abs() < 1e-12 * scale,
+                "{model:?}"
+            );
+            assert!((f2.cartesian[0] - f0.cartesian[0]).abs() < 1e-12 * scale);
+            assert!((f2.cartesian[1] + f0.cartesian[1]).abs() < 1e-12 * scale);
+        }
+    }
+
+    #[test]
     fn model_names_round_trip() {
         for m in ClosedFormModel::ALL {
             assert_eq!(m.to_string().parse::<ClosedFormModel>().unwrap(), m);
