@@ -506,11 +506,8 @@ mod tests {
                 c * f0.cartesian[0] - s * f0.cartesian[1],
                 s * f0.cartesian[0] + c * f0.cartesian[1],
             ];
-            for k in 0..2 {
-                assert!(
-                    (f1.cartesian[k] - want[k]).abs() < 1e-12 * scale,
-                    "{model:?}"
-                );
+            for (got, want) in f1.cartesian.iter().zip(want) {
+                assert!((got - want).abs() < 1e-12 * scale, "{model:?}");
             }
             // Mirror y → −y (γ, γ̇, ω change sign): F_r stays, F_t changes sign — for the
             // models whose film region follows the motion (not the fixed 0 … π Gumbel films).
