@@ -21,6 +21,7 @@ use crate::run::{Quiet, run_case_file};
 ///   jbearing run cases/flores2006_mobility.toml --out results/
 ///   jbearing batch cases/ --jobs 2 --out results/
 ///   jbearing synth-loads cases/machine/compressor.toml
+///   jbearing closed-form cases/flores2009_simple_bearing.toml
 #[derive(Debug, Parser)]
 #[command(name = "jbearing", version, about, long_about, verbatim_doc_comment)]
 pub struct Cli {
@@ -47,6 +48,14 @@ pub enum Command {
         /// Case files to check.
         #[arg(required = true)]
         cases: Vec<PathBuf>,
+    },
+    /// Print the static equilibrium of the closed-form film models (short / long bearing,
+    /// Sommerfeld / Gumbel, Pinkus–Sternlicht) under the case's constant or cycle-mean load,
+    /// without running the mobility or rigorous solvers. Models: the case's `[closed_form]`
+    /// list, else all.
+    ClosedForm {
+        /// The case file (TOML).
+        case: PathBuf,
     },
     /// Run the validation cases and print their table against published values.
     Validate {
@@ -145,6 +154,7 @@ pub fn main_with(cli: Cli) -> ExitCode {
                 for f in &o.files {
                     println!("wrote {}", f.display());
                 }
+                let closed_form = o.report.closed_form.clone();
                 print!(
                     "{}",
                     summary_table(&[crate::batch::BatchEntry {
@@ -152,6 +162,9 @@ pub fn main_with(cli: Cli) -> ExitCode {
                         result: Ok(o),
                     }])
                 );
+                if let Some(t) = &closed_form {
+                    print!("{}", crate::closed_form_report::format_table(t));
+                }
                 ExitCode::SUCCESS
             }
             Err(e) => {
@@ -189,6 +202,22 @@ pub fn main_with(cli: Cli) -> ExitCode {
                 ExitCode::SUCCESS
             }
         }
+        Command::ClosedForm { case } => match Case::from_file(&case) {
+            Ok(c) => {
+                let models = if c.closed_form_models.is_empty() {
+                    jbearing_solvers::closed_form::ClosedFormModel::ALL.to_vec()
+                } else {
+                    c.closed_form_models.clone()
+                };
+                let t = crate::closed_form_report::table(&c, &models);
+                print!("{}", crate::closed_form_report::format_table(&t));
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        },
         Command::Validate { cases_dir, out } => crate::validate::run(&cases_dir, &out),
         Command::SynthLoads { machine } => match Compressor::from_file(&machine) {
             Ok(c) => match c.write_tables() {

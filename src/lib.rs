@@ -6,12 +6,14 @@
 //! - [`run`]: one case through each method into a [`output::CaseReport`].
 //! - [`batch`]: many cases in parallel with progress bars and a summary table.
 //! - [`cli`]: the `jbearing` command line.
+//! - [`closed_form_report`]: the closed-form static-equilibrium table of a case.
 //! - [`output`]: the writers (HDF5, plots, CSV summary).
 //! - [`validate`]: `jbearing validate`, the validation cases against their published values.
 
 pub mod batch;
 pub mod case;
 pub mod cli;
+pub mod closed_form_report;
 pub mod output;
 pub mod run;
 pub mod validate;

@@ -744,6 +744,7 @@ pub fn solve_case(case: &Case, observer: &dyn RunObserver) -> Result<CaseReport,
         methods.push(run_mobility(case, observer)?);
     }
     let summary = summary_rows(&methods);
+    let closed_form = crate::closed_form_report::report_table(case, &methods);
     Ok(CaseReport {
         case_name: case.name.clone(),
         case_text: case.text.clone(),
@@ -754,6 +755,7 @@ pub fn solve_case(case: &Case, observer: &dyn RunObserver) -> Result<CaseReport,
         run: RunInfo::for_this_build(t0.elapsed().as_secs_f64(), &started),
         methods,
         summary,
+        closed_form,
     })
 }
 

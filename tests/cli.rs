@@ -308,3 +308,26 @@ fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
         }
     }
 }
+
+/// `jbearing closed-form` on the seed 004 simple bearing prints ε of each model; the values are
+/// the README's "Seed 004 Table 1 simple bearing" table (published closed forms, seed 004
+/// eqs. 6–13, checked against the paper's converged force F_Y = 31.275 N), to its 4 decimals.
+#[test]
+fn closed_form_prints_the_seed_004_equilibria() {
+    let out = jbearing(&["closed-form", "cases/flores2009_simple_bearing.toml"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    let eps = |model: &str| -> f64 {
+        let line = stdout
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(model))
+            .unwrap_or_else(|| panic!("no row {model} in\n{stdout}"));
+        line.split_whitespace().nth(1).unwrap().parse().unwrap()
+    };
+    assert_eq!(eps("short_gumbel"), 0.1174, "{stdout}");
+    assert_eq!(eps("long_sommerfeld"), 0.0842, "{stdout}");
+    assert_eq!(eps("short_sommerfeld"), 0.0603, "{stdout}");
+    assert_eq!(eps("long_gumbel"), 0.1673, "{stdout}");
+    // Nothing was solved or written: no files listed.
+    assert!(!stdout.contains("wrote"), "{stdout}");
+}

@@ -18,6 +18,7 @@ pub mod units;
 
 use std::path::{Path, PathBuf};
 
+use jbearing_solvers::closed_form::{ClosedFormError, ClosedFormModel};
 use jbearing_solvers::mobility::{LoadInterpolation, TabulatedLoad};
 
 pub use self::error::{CaseError, Locator};
@@ -214,6 +215,8 @@ pub struct Case {
     pub output: OutputOptions,
     /// What to compute.
     pub methods: Methods,
+    /// Closed-form models of the static-equilibrium table (empty: no table).
+    pub closed_form_models: Vec<ClosedFormModel>,
 }
 
 impl Case {
@@ -1107,7 +1110,8 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         ));
     }
     let m = &raw.methods;
-    if !(m.mobility || m.rigorous || m.closed_form) {
+    let closed_form_models = resolve_closed_form(raw.closed_form.as_ref(), m.closed_form, ctx)?;
+    if !(m.mobility || m.rigorous || !closed_form_models.is_empty()) {
         return Err(ctx.err(
             "methods",
             "every method is switched off: nothing to compute",
@@ -1158,7 +1162,45 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         methods: Methods {
             mobility: m.mobility,
             rigorous: m.rigorous,
-            closed_form: m.closed_form,
+            closed_form: !closed_form_models.is_empty(),
         },
+        closed_form_models,
     })
+}
+
+/// `[closed_form] models` (or `methods.closed_form = true`, meaning every model).
+fn resolve_closed_form(
+    section: Option<&ClosedFormSection>,
+    flag: bool,
+    ctx: &Ctx,
+) -> Result<Vec<ClosedFormModel>, CaseError> {
+    let names: Vec<String> = match section.map(|s| &s.models) {
+        None if flag => vec!["all".into()],
+        None => return Ok(Vec::new()),
+        Some(ClosedFormModels::One(n)) => vec![n.clone()],
+        Some(ClosedFormModels::List(l)) => l.clone(),
+    };
+    if names.is_empty() {
+        return Err(ctx.err(
+            "closed_form.models",
+            "the list is empty (give \"all\" or model names)",
+        ));
+    }
+    let mut models: Vec<ClosedFormModel> = Vec::new();
+    for n in &names {
+        let add: Vec<ClosedFormModel> = if n == "all" {
+            ClosedFormModel::ALL.to_vec()
+        } else {
+            vec![
+                n.parse()
+                    .map_err(|e: ClosedFormError| ctx.err("closed_form.models", e.to_string()))?,
+            ]
+        };
+        for a in add {
+            if !models.contains(&a) {
+                models.push(a);
+            }
+        }
+    }
+    Ok(models)
 }

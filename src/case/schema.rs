@@ -39,6 +39,31 @@ pub struct CaseFile {
     /// What to compute.
     #[serde(default)]
     pub methods: MethodsSection,
+    /// Closed-form static-equilibrium table, `[closed_form]`.
+    pub closed_form: Option<ClosedFormSection>,
+}
+
+/// `[closed_form]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClosedFormSection {
+    /// `"all"` or a list of model names.
+    #[serde(default = "default_closed_form_models")]
+    pub models: ClosedFormModels,
+}
+
+/// `closed_form.models`: `"all"` or `["short_gumbel", …]`.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum ClosedFormModels {
+    /// One name (`"all"` or a model).
+    One(String),
+    /// Model names.
+    List(Vec<String>),
+}
+
+fn default_closed_form_models() -> ClosedFormModels {
+    ClosedFormModels::One("all".into())
 }
 
 /// `[bearing]`.

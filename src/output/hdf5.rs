@@ -23,6 +23,11 @@
 //! ├── summary/
 //! │      method(method)                         "rigorous", "mobility"
 //! │      <row>(method)                          NaN (= _FillValue) where a method lacks it
+//! ├── closed_form/       (when the case asks for it) attrs: load_x, load_y [N], relative_speed
+//! │      model(model)                           "short_gumbel", "long_sommerfeld", …, "fd_reynolds"
+//! │      status(model)                          "ok" or why the model has no equilibrium
+//! │      eccentricity_ratio(model) [1], attitude_angle(model) [rad], line_of_centres_angle,
+//! │      min_film_thickness [m], film_force_x/y [N], force_residual [N], sommerfeld_number [1]
 //! └── VTKHDF/            film fields on the cylindrical surface (see `vtkhdf`)
 //! ```
 //!
@@ -46,8 +51,8 @@ use hdf5_metno_sys::h5::herr_t;
 use hdf5_metno_sys::h5i::hid_t;
 
 use super::{
-    CaseReport, FieldSnapshots, Method, MethodResult, OutputError, OutputWriter, ParameterValue,
-    vtkhdf, write_atomically,
+    CaseReport, ClosedFormTable, FieldSnapshots, Method, MethodResult, OutputError, OutputWriter,
+    ParameterValue, vtkhdf, write_atomically,
 };
 
 // The dimension-scale API of the HDF5 high-level library (libhdf5_hl, linked through the "hl"
@@ -222,6 +227,9 @@ impl FileWriter {
             self.write_method(file, m)?;
         }
         self.write_summary(file, r)?;
+        if let Some(t) = &r.closed_form {
+            self.write_closed_form(file, t)?;
+        }
         if !r.input_files.is_empty() {
             self.write_input_files(file, r)?;
         }
@@ -385,6 +393,50 @@ impl FileWriter {
             let ds = self.variable(&g, &row.name, &values, &[&method])?;
             self.str_attr(&ds, "units", &row.units)?;
             self.str_attr(&ds, "long_name", &row.long_name)?;
+            self.f64_attr(&ds, "_FillValue", f64::NAN)?;
+        }
+        Ok(())
+    }
+
+    fn write_closed_form(&mut self, file: &h5::File, t: &ClosedFormTable) -> Res<()> {
+        let g = file
+            .create_group("closed_form")
+            .map_err(self.err("group closed_form"))?;
+        self.str_attr(
+            &g,
+            "description",
+            "static equilibrium of the closed-form film models (jbearing_solvers::closed_form) \
+             under a constant load; fd_reynolds: the finite-difference Reynolds (rigorous) \
+             answer of a steady case",
+        )?;
+        self.str_attr(&g, "load_basis", &t.load_basis)?;
+        self.f64_attr(&g, "load_x", t.load[0])?;
+        self.f64_attr(&g, "load_y", t.load[1])?;
+        self.f64_attr(&g, "relative_speed", t.relative_speed)?;
+        let labels: Vec<VarLenUnicode> = t.rows.iter().map(|r| vlen(&r.model)).collect();
+        let model = g
+            .new_dataset_builder()
+            .with_data(&labels[..])
+            .create("model")
+            .map_err(self.err("closed_form/model"))?;
+        self.make_scale(&model, "model")?;
+        self.str_attr(&model, "long_name", "film model")?;
+        let status: Vec<VarLenUnicode> = t.rows.iter().map(|r| vlen(&r.status)).collect();
+        let st = g
+            .new_dataset_builder()
+            .with_data(&status[..])
+            .create("status")
+            .map_err(self.err("closed_form/status"))?;
+        self.attach(&st, &[&model], "status")?;
+        self.str_attr(&st, "long_name", "ok, or why the model has no equilibrium")?;
+        let Some(first) = t.rows.first() else {
+            return Ok(());
+        };
+        for (k, (name, _, units, long)) in first.columns().into_iter().enumerate() {
+            let values: Vec<f64> = t.rows.iter().map(|r| r.columns()[k].1).collect();
+            let ds = self.variable(&g, name, &values, &[&model])?;
+            self.str_attr(&ds, "units", units)?;
+            self.str_attr(&ds, "long_name", long)?;
             self.f64_attr(&ds, "_FillValue", f64::NAN)?;
         }
         Ok(())

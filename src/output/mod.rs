@@ -23,7 +23,8 @@
 //! │   ├── time [s], crank_angle [deg] the sampling of the stored cycle
 //! │   ├── series: [Series]            named time series, e.g. names::MIN_FILM_THICKNESS
 //! │   └── fields: Option<FieldSnapshots>  2-D fields on (θ, z) at a set of instants
-//! └── summary: [SummaryRow]           cycle figures per method (min h_min, mean flow, …)
+//! ├── summary: [SummaryRow]           cycle figures per method (min h_min, mean flow, …)
+//! └── closed_form: Option<ClosedFormTable>  static equilibrium per closed-form model
 //! ```
 //!
 //! Conventions follow `shared/design.md` §1: SI units everywhere except the crank angle, which is
@@ -37,11 +38,13 @@
 //! atomically (see [`write_atomically`]): a temporary file in the target directory, renamed into
 //! place only when complete, removed on any error.
 
+pub mod closed_form;
 pub mod csv_summary;
 pub mod hdf5;
 pub mod plots;
 pub mod vtkhdf;
 
+pub use self::closed_form::{ClosedFormRow, ClosedFormTable};
 pub use self::csv_summary::CsvSummaryWriter;
 pub use self::hdf5::Hdf5Writer;
 pub use self::plots::PlotWriter;
@@ -471,6 +474,8 @@ pub struct CaseReport {
     pub methods: Vec<MethodResult>,
     /// The summary table.
     pub summary: Vec<SummaryRow>,
+    /// The closed-form static-equilibrium table, when the case asks for it.
+    pub closed_form: Option<ClosedFormTable>,
 }
 
 /// Why a report could not be written.
@@ -666,6 +671,9 @@ impl CaseReport {
                     return Err(bad(format!("summary '{}' {m} = {v} is not finite", r.name)));
                 }
             }
+        }
+        if let Some(t) = &self.closed_form {
+            t.validate().map_err(bad)?;
         }
         Ok(())
     }

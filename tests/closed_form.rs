@@ -1,0 +1,134 @@
+//! The closed-form static-equilibrium table in the report and in `CASE.h5`: the seed 004 simple
+//! bearing (`cases/flores2009_simple_bearing.toml`) solved in this process, its HDF5 file read
+//! back with hdf5-metno. No subprocess is spawned here (HDF5 file locks are inherited by
+//! children, see `tests/output_python.rs`); the CLI side is in `tests/cli.rs`.
+
+use std::path::PathBuf;
+
+use hdf5_metno as h5;
+use hdf5_metno::types::VarLenUnicode;
+use jbearing::case::Case;
+use jbearing::output::{Hdf5Writer, OutputWriter};
+use jbearing::run::{Quiet, solve_case};
+
+fn flores_case() -> Case {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/flores2009_simple_bearing.toml");
+    Case::from_file(&p).unwrap()
+}
+
+/// README "Closed-form models and Ritz", Seed 004 Table 1 simple bearing table: ε per model from
+/// the published closed forms (seed 004 eqs. 6–13; seed 000 eqs. 36–37), printed to 4 decimals.
+const README_EPS: [(&str, f64); 5] = [
+    ("long_sommerfeld", 0.0842),
+    ("long_gumbel", 0.1673),
+    ("short_sommerfeld", 0.0603),
+    ("short_gumbel", 0.1174),
+    ("short_gumbel_moving_film", 0.1174),
+];
+
+#[test]
+fn closed_form_group_reads_back_with_model_dimension_and_units() {
+    let case = flores_case();
+    let report = solve_case(&case, &Quiet).unwrap();
+    let table = report
+        .closed_form
+        .as_ref()
+        .expect("[closed_form] asks for it");
+    assert_eq!(table.rows.len(), 6, "models = \"all\": six models");
+    let dir = tempfile::tempdir().unwrap();
+    let files = Hdf5Writer::new().write(&report, dir.path()).unwrap();
+    let f = h5::File::open(&files[0]).unwrap();
+    let g = f.group("closed_form").unwrap();
+
+    let models: Vec<VarLenUnicode> = g.dataset("model").unwrap().read_raw().unwrap();
+    let models: Vec<String> = models.iter().map(|m| m.as_str().to_string()).collect();
+    let eps: Vec<f64> = g.dataset("eccentricity_ratio").unwrap().read_raw().unwrap();
+    let h_min: Vec<f64> = g.dataset("min_film_thickness").unwrap().read_raw().unwrap();
+    let fy: Vec<f64> = g.dataset("film_force_y").unwrap().read_raw().unwrap();
+    let resid: Vec<f64> = g.dataset("force_residual").unwrap().read_raw().unwrap();
+    let status: Vec<VarLenUnicode> = g.dataset("status").unwrap().read_raw().unwrap();
+    assert_eq!(models.len(), 6);
+    for (name, want) in README_EPS {
+        let k = models
+            .iter()
+            .position(|m| m == name)
+            .unwrap_or_else(|| panic!("{name}"));
+        // The README prints 4 decimals: half a unit in the last place.
+        assert!(
+            (eps[k] - want).abs() <= 0.5e-4,
+            "{name}: ε {} vs {want}",
+            eps[k]
+        );
+        // h_min = c (1 − ε), seed 004 eq. 42, c = 0.2 mm.
+        assert!((h_min[k] - 2.0e-4 * (1.0 - eps[k])).abs() < 1e-15);
+        // Force balance: F_y = −W_y = 31.275 N (seed 004 §7: converged F_Y = 31.275 N).
+        assert!((fy[k] - 31.275).abs() < 1e-9, "{name}: F_y {}", fy[k]);
+        assert!(resid[k] < 1e-9);
+        assert_eq!(status[k].as_str(), "ok");
+    }
+
+    // netCDF-4 dimension: `model` is a dimension scale, variables carry DIMENSION_LIST and units.
+    let model = g.dataset("model").unwrap();
+    let class: h5::types::FixedAscii<16> = model.attr("CLASS").unwrap().read_scalar().unwrap();
+    assert_eq!(class.as_str(), "DIMENSION_SCALE");
+    for (var, units) in [
+        ("eccentricity_ratio", "1"),
+        ("attitude_angle", "rad"),
+        ("min_film_thickness", "m"),
+        ("film_force_x", "N"),
+        ("sommerfeld_number", "1"),
+    ] {
+        let ds = g.dataset(var).unwrap();
+        assert_eq!(ds.shape(), vec![6], "{var}");
+        let u: VarLenUnicode = ds.attr("units").unwrap().read_scalar().unwrap();
+        assert_eq!(u.as_str(), units, "{var}");
+        assert!(
+            ds.attr_names()
+                .unwrap()
+                .contains(&"DIMENSION_LIST".to_string()),
+            "{var}"
+        );
+    }
+    let att: Vec<f64> = g.dataset("attitude_angle").unwrap().read_raw().unwrap();
+    let k = models.iter().position(|m| m == "long_sommerfeld").unwrap();
+    // The full-film long bearing sits at 90° to the load (Sommerfeld), README table 90.00°.
+    assert!((att[k].to_degrees() - 90.0).abs() < 1e-6);
+    let wy: f64 = g.attr("load_y").unwrap().read_scalar().unwrap();
+    assert_eq!(wy, -31.275);
+}
+
+#[test]
+fn no_closed_form_table_unless_asked() {
+    let case = flores_case();
+    let text = case.text.replace("[closed_form]\nmodels = \"all\"\n", "");
+    assert_ne!(text, case.text);
+    let case = Case::from_text(&text, case.path.as_ref().unwrap()).unwrap();
+    assert!(case.closed_form_models.is_empty());
+    let report = solve_case(&case, &Quiet).unwrap();
+    assert!(report.closed_form.is_none());
+    let dir = tempfile::tempdir().unwrap();
+    let files = Hdf5Writer::new().write(&report, dir.path()).unwrap();
+    let f = h5::File::open(&files[0]).unwrap();
+    assert!(f.group("closed_form").is_err());
+}
+
+#[test]
+fn model_list_and_unknown_model() {
+    let case = flores_case();
+    let path = case.path.clone().unwrap();
+    let two = case.text.replace(
+        "models = \"all\"",
+        "models = [\"short_gumbel\", \"long_sommerfeld\", \"short_gumbel\"]",
+    );
+    let c = Case::from_text(&two, &path).unwrap();
+    let names: Vec<&str> = c.closed_form_models.iter().map(|m| m.name()).collect();
+    assert_eq!(names, ["short_gumbel", "long_sommerfeld"]);
+    let bad = case
+        .text
+        .replace("models = \"all\"", "models = [\"short_gumbl\"]");
+    let e = Case::from_text(&bad, &path).unwrap_err().to_string();
+    assert!(
+        e.contains("closed_form.models") && e.contains("short_gumbl"),
+        "{e}"
+    );
+}
