@@ -1,7 +1,10 @@
 //! The closed-form static-equilibrium table in the report and in `CASE.h5`: the seed 004 simple
 //! bearing (`cases/flores2009_simple_bearing.toml`) solved in this process, its HDF5 file read
-//! back with hdf5-metno. No subprocess is spawned here (HDF5 file locks are inherited by
-//! children, see `tests/output_python.rs`); the CLI side is in `tests/cli.rs`.
+//! back with hdf5-metno. The CLI side is in `tests/cli.rs`.
+//!
+//! `solve_case` spawns `git describe` (RunInfo), and a child inherits the HDF5 file descriptors
+//! (and flock) open in other threads at that moment, so a parallel `File::open` fails with
+//! EAGAIN. Every test here holds [`SERIAL`] for its whole run.
 
 use std::path::PathBuf;
 
@@ -10,6 +13,13 @@ use hdf5_metno::types::VarLenUnicode;
 use jbearing::case::Case;
 use jbearing::output::{Hdf5Writer, OutputWriter};
 use jbearing::run::{Quiet, solve_case};
+
+/// Serialises the tests of this binary (see the module docs).
+static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn serial() -> std::sync::MutexGuard<'static, ()> {
+    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+}
 
 fn flores_case() -> Case {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/flores2009_simple_bearing.toml");
@@ -28,6 +38,7 @@ const README_EPS: [(&str, f64); 5] = [
 
 #[test]
 fn closed_form_group_reads_back_with_model_dimension_and_units() {
+    let _serial = serial();
     let case = flores_case();
     let report = solve_case(&case, &Quiet).unwrap();
     let table = report
@@ -99,6 +110,7 @@ fn closed_form_group_reads_back_with_model_dimension_and_units() {
 
 #[test]
 fn no_closed_form_table_unless_asked() {
+    let _serial = serial();
     let case = flores_case();
     let text = case.text.replace("[closed_form]\nmodels = \"all\"\n", "");
     assert_ne!(text, case.text);
@@ -114,6 +126,7 @@ fn no_closed_form_table_unless_asked() {
 
 #[test]
 fn model_list_and_unknown_model() {
+    let _serial = serial();
     let case = flores_case();
     let path = case.path.clone().unwrap();
     let two = case.text.replace(
@@ -131,4 +144,64 @@ fn model_list_and_unknown_model() {
         e.contains("closed_form.models") && e.contains("short_gumbl"),
         "{e}"
     );
+}
+
+/// The `fd_reynolds` row of a steady case comes from the rigorous method's journal-centre
+/// series: a journal held at ε = 0.5, γ = −30° under the load along −y (ω > 0) sits 60° from the
+/// load line in the direction of rotation (hand geometry: φ = γ − angle(W) = −30° − (−90°)).
+#[test]
+fn fd_reynolds_row_from_a_steady_rigorous_result() {
+    let _serial = serial();
+    use jbearing::closed_form_report::{FD_ROW, report_table};
+    use jbearing::output::{Method, MethodResult, Series, names};
+    let case = flores_case();
+    let c = case.radial_clearance;
+    let gamma = (-30.0f64).to_radians();
+    let n = 5;
+    let constant = |v: f64| vec![v; n];
+    let rig = MethodResult {
+        method: Method::Rigorous,
+        time: (0..n).map(|k| k as f64 * 0.01).collect(),
+        crank_angle: (0..n).map(|k| k as f64 * 30.0).collect(),
+        series: vec![
+            Series::new(
+                names::ECCENTRICITY_X,
+                "e_x",
+                "m",
+                constant(0.5 * c * gamma.cos()),
+            ),
+            Series::new(
+                names::ECCENTRICITY_Y,
+                "e_y",
+                "m",
+                constant(0.5 * c * gamma.sin()),
+            ),
+            Series::new(names::MIN_FILM_THICKNESS, "h_min", "m", constant(0.5 * c)),
+        ],
+        fields: None,
+        solver_info: Vec::new(),
+    };
+    let t = report_table(&case, &[rig]).unwrap();
+    assert_eq!(t.rows.len(), 7);
+    let fd = t.rows.last().unwrap();
+    assert_eq!(fd.model, FD_ROW);
+    assert!((fd.eccentricity_ratio - 0.5).abs() < 1e-12);
+    assert!((fd.attitude_angle.to_degrees() - 60.0).abs() < 1e-9);
+    assert!((fd.min_film_thickness - 0.5 * c).abs() < 1e-15);
+    assert!(fd.film_force[0].is_nan() && fd.force_residual.is_nan());
+    // The same Sommerfeld number as the closed-form rows (same load, speed, geometry).
+    assert!((fd.sommerfeld_number - t.rows[0].sommerfeld_number).abs() < 1e-12);
+    // Written with NaN as the fill value, it passes the report checks.
+    let mut report = solve_case(&case, &Quiet).unwrap();
+    report.closed_form = Some(t);
+    let dir = tempfile::tempdir().unwrap();
+    let files = Hdf5Writer::new().write(&report, dir.path()).unwrap();
+    let f = h5::File::open(&files[0]).unwrap();
+    let fx: Vec<f64> = f
+        .dataset("closed_form/film_force_x")
+        .unwrap()
+        .read_raw()
+        .unwrap();
+    assert_eq!(fx.len(), 7);
+    assert!(fx[6].is_nan());
 }
