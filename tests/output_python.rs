@@ -194,3 +194,44 @@ fn python_example_plots_from_the_file() {
     let points = common::N_THETA * common::N_Z;
     assert!(out.contains(&format!("surface: {points} points")), "{out}");
 }
+
+/// The `closed_form` group opens in xarray with `model` as its dimension and string coordinate
+/// (the seed 004 simple bearing's table on the writer fixture).
+#[test]
+fn closed_form_group_opens_in_xarray() {
+    let python = python_env();
+    let dir = tempfile::tempdir().unwrap();
+    let case = jbearing::case::Case::from_file(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/flores2009_simple_bearing.toml"),
+    )
+    .unwrap();
+    let mut report = common::report("closed_form_fixture");
+    report.closed_form = jbearing::closed_form_report::report_table(&case, &[]);
+    let table = report.closed_form.clone().expect("the case asks for it");
+    let path = Hdf5Writer::new().write(&report, dir.path()).unwrap()[0].clone();
+    let script = "import sys, xarray as xr\n\
+        d = xr.open_dataset(sys.argv[1], engine='h5netcdf', group='closed_form')\n\
+        print('dims', dict(d.sizes))\n\
+        print('eccentricity_ratio dims', d.eccentricity_ratio.dims, d.eccentricity_ratio.attrs['units'])\n\
+        print('min_film_thickness units', d.min_film_thickness.attrs['units'])\n\
+        for m in d.model.values:\n\
+        \x20   print('row', m, repr(float(d.eccentricity_ratio.sel(model=m))))\n";
+    let out = run(
+        Command::new(&python)
+            .env("HDF5_USE_FILE_LOCKING", "FALSE")
+            .args(["-c", script])
+            .arg(&path),
+        "xarray closed_form",
+    );
+    assert!(out.contains("dims {'model': 6}"), "{out}");
+    assert!(
+        out.contains("eccentricity_ratio dims ('model',) 1"),
+        "{out}"
+    );
+    assert!(out.contains("min_film_thickness units m"), "{out}");
+    for r in &table.rows {
+        // Python's repr of a float is the shortest round-trip string, as Rust's Display.
+        let line = format!("row {} {}", r.model, r.eccentricity_ratio);
+        assert!(out.contains(&line), "{line} not in\n{out}");
+    }
+}
