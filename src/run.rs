@@ -15,8 +15,7 @@ use std::time::Instant;
 
 use jbearing_solvers::mobility::{
     BookerShortBearing, ExactShortBearing, MobilityError, MobilityMap, MobilityMapParams,
-    MobilityModel, MobilityParams, OrbitInfo, OrbitParams, PeriodicLoad, ShortBearingSqueeze,
-    solve_orbit,
+    MobilityModel, MobilityParams, OrbitInfo, OrbitParams, PeriodicLoad, solve_orbit,
 };
 
 use jbearing_solvers::inverse::{
@@ -24,6 +23,7 @@ use jbearing_solvers::inverse::{
     ShortBearingFilm, ShortBearingParams, TimeScheme, solve_inverse,
 };
 use jbearing_solvers::load::LoadHistory;
+use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
 use ndarray::Array3;
 
 use crate::case::{Case, CaseError, MobilityModelChoice, RigorousFilm};
@@ -514,21 +514,32 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
             "exact short-bearing mobility (inverted squeeze integrals)",
         ),
         MobilityModelChoice::Map => {
+            // Finite-length mobility (design.md §6, Goenka's construction): pure-squeeze
+            // solutions of our own Reynolds-condition film over (ε, load angle) for this L/D.
+            let film = ReynoldsSqueezeFilm::new(SqueezeFilmParams::new(ld)).map_err(|e| {
+                RunError::MobilityMap {
+                    case: case.name.clone(),
+                    message: e.to_string(),
+                }
+            })?;
             let map = MobilityMap::build(
-                &ShortBearingSqueeze {
-                    length_to_diameter: ld,
+                &film,
+                &MobilityMapParams {
+                    eccentricity_nodes: 21,
+                    angle_nodes: 19,
+                    max_eccentricity: 0.97,
                 },
-                &MobilityMapParams::default(),
             )
             .map_err(|e| RunError::MobilityMap {
                 case: case.name.clone(),
                 message: e.to_string(),
             })?;
             check_model(&map, ld);
+            params.eccentricity_limit = params.eccentricity_limit.min(map.max_eccentricity());
             (
                 solve_orbit(&params, &map, &load).map_err(err)?,
-                "tabulated mobility map (short-bearing squeeze provider until the finite-length \
-                 Reynolds provider is on main)",
+                "finite-length mobility map: pure-squeeze Reynolds-condition film of this L/D \
+                 (squeeze_film), 21 x 19 nodes up to eps = 0.97",
             )
         }
     };
