@@ -308,3 +308,48 @@ fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
         }
     }
 }
+
+#[test]
+fn closed_form_table_agrees_with_the_mobility_equilibrium_of_a_steady_load() {
+    // JB1 (seed 003) under its constant load: the mobility orbit (Booker's short-bearing
+    // mobility) settles at the static equilibrium; the closed-form short-bearing Gumbel model
+    // solves that equilibrium directly (seed 004). Two routes to the same short-bearing answer:
+    // Booker's closed form approximates the Gumbel squeeze film to about 1 % in ε here, hence 1 %.
+    let case = jbearing::case::Case::from_file(&root().join("cases/benasciutti_jb1_steady.toml"))
+        .expect("JB1 case");
+    assert!(case.methods.closed_form);
+    let report = jbearing::run::solve_case(&case, &jbearing::run::Quiet).expect("JB1 solves");
+    let param = |k: &str| match report
+        .parameters
+        .iter()
+        .find(|p| p.key == k)
+        .map(|p| &p.value)
+    {
+        Some(jbearing::output::ParameterValue::Number(v)) => *v,
+        other => panic!("{k}: {other:?}"),
+    };
+    let eps_closed = param("closed_form_short_gumbel_eccentricity_ratio");
+    let m = report.method(jbearing::output::Method::Mobility).unwrap();
+    let eps_mob = m
+        .reduce(
+            jbearing::output::names::ECCENTRICITY_RATIO,
+            jbearing::output::Reduction::Mean,
+        )
+        .unwrap();
+    assert!(
+        (eps_closed - eps_mob).abs() < 0.01 * eps_closed,
+        "closed form {eps_closed} vs mobility {eps_mob}"
+    );
+    // Every model of the table is there, with a physical ε.
+    for model in [
+        "long_sommerfeld",
+        "long_gumbel",
+        "short_sommerfeld",
+        "short_gumbel",
+        "short_gumbel_moving_film",
+        "pinkus_sternlicht",
+    ] {
+        let e = param(&format!("closed_form_{model}_eccentricity_ratio"));
+        assert!(e > 0.0 && e < 1.0, "{model}: ε = {e}");
+    }
+}
