@@ -23,6 +23,12 @@
 //!   converged when |r| / max(|W|, W_ref) ≤ tol                     (default tol = 1e-4)
 //! ```
 //!
+//! The discretised JFO film force is only piecewise smooth in ε: it jumps when a node switches
+//! between full and cavitated film (by up to ~1 % of the load on coarse grids). A step whose
+//! Newton stalls on such a jump (no descent along a fresh difference Jacobian) is accepted at its
+//! best point if |r|/max(|W|, W_ref) ≤ `accept_tolerance` (default 1e-2) and counted in
+//! [`InverseInfo::stalled_steps`]; above that it is an error.
+//!
 //! # Time marching
 //!
 //! ```text

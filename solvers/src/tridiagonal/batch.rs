@@ -35,6 +35,15 @@
 //! generic code instantiated for chunks of 4, 2 and 1 lanes. The workspace holds the normalised
 //! super-diagonal u and fill-in f of one chunk: 2 · m · 8 values, independent of `lines`.
 //!
+//! ## Instruction sets
+//!
+//! The default x86-64 target only guarantees SSE2 (2 doubles per vector). On x86-64 the chunk
+//! loop is compiled twice, for that baseline and with AVX2 enabled (4 doubles per vector), and
+//! the AVX2 copy is chosen at run time when the CPU has it (`is_x86_feature_detected!`). Only the
+//! width of the vectors differs: the same IEEE operations in the same order (AVX2 code contains
+//! no fused multiply-add unless asked for, and nothing here asks), so both copies give the same
+//! bits as the single-line functions.
+//!
 //! ## Pivot checks without branches
 //!
 //! Each lane accumulates a flag `ok &= pivot_ok(pivot, scale)` (a compare and an and, no branch)
@@ -60,7 +69,7 @@
 //! (This would break only under a target whose scalar and vector arithmetic differ, such as x87,
 //! which Rust's x86-64 targets do not use.)
 
-use super::{LineWorkspace, TridiagonalError, cyclic_thomas_solve, pivot_ok};
+use super::{FLUSH_RTOL, LineWorkspace, TridiagonalError, cyclic_thomas_solve, flush, pivot_ok};
 
 /// Number of lines solved together in one chunk (SIMD lanes of the batched kernels).
 pub const LANES: usize = 8;
@@ -261,7 +270,34 @@ trait ChunkKernel {
     ) -> Result<(), ChunkError<L>>;
 }
 
+/// Runs the chunks, with AVX2 when the CPU has it (see "Instruction sets" in the module docs).
 fn solve_all<K: ChunkKernel>(
+    kernel: &K,
+    x: &mut [f64],
+    work: &mut BatchWorkspace,
+) -> Result<(), TridiagonalError> {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2 (checked just above), the only requirement of calling
+        // a function compiled with `target_feature(enable = "avx2")`.
+        return unsafe { solve_all_avx2(kernel, x, work) };
+    }
+    solve_all_generic(kernel, x, work)
+}
+
+/// [`solve_all_generic`] compiled for AVX2 (4 doubles per vector instead of SSE2's 2).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn solve_all_avx2<K: ChunkKernel>(
+    kernel: &K,
+    x: &mut [f64],
+    work: &mut BatchWorkspace,
+) -> Result<(), TridiagonalError> {
+    solve_all_generic(kernel, x, work)
+}
+
+#[inline(always)]
+fn solve_all_generic<K: ChunkKernel>(
     kernel: &K,
     x: &mut [f64],
     work: &mut BatchWorkspace,
@@ -458,12 +494,16 @@ impl ChunkKernel for Periodic<'_> {
         store(f, 0, &f_prev);
         store(x, l0, &y_prev);
         // Last row, fused: remove its column-0 entry A_0 = a_{m-1} with row 0.
-        let mut carried: [f64; L] = bt.row(bt.sup, last, l0);
+        let b_last: [f64; L] = bt.row(bt.sub, last, l0);
         let d_last: [f64; L] = bt.row(bt.diag, last, l0);
+        let a_last: [f64; L] = bt.row(bt.sup, last, l0);
         let c_last: [f64; L] = bt.row(bt.rhs, last, l0);
+        let scale_last = lanes::<L>(|k| b_last[k].abs() + d_last[k].abs() + a_last[k].abs());
+        let carried_tol = lanes::<L>(|k| FLUSH_RTOL * scale_last[k]);
+        let mut carried = a_last;
         let mut d_star = lanes::<L>(|k| d_last[k] - carried[k] * f_prev[k]);
         let mut c_star = lanes::<L>(|k| c_last[k] - carried[k] * y_prev[k]);
-        carried = lanes::<L>(|k| -carried[k] * u_prev[k]);
+        carried = lanes::<L>(|k| flush(-carried[k] * u_prev[k], carried_tol[k]));
 
         // Rows 1 … m-3.
         for i in 1..last - 1 {
@@ -476,14 +516,14 @@ impl ChunkKernel for Periodic<'_> {
             check::<L, LOCATE>(&mut ok, &pivot, &scale, l0, i)?;
             let r = lanes::<L>(|k| 1.0 / pivot[k]);
             u_prev = lanes::<L>(|k| a[k] * r[k]);
-            f_prev = lanes::<L>(|k| -(b[k] * f_prev[k]) * r[k]);
+            f_prev = lanes::<L>(|k| flush(-(b[k] * f_prev[k]) * r[k], FLUSH_RTOL));
             y_prev = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
             store(u, i * L, &u_prev);
             store(f, i * L, &f_prev);
             store(x, i * lines + l0, &y_prev);
             d_star = lanes::<L>(|k| d_star[k] - carried[k] * f_prev[k]);
             c_star = lanes::<L>(|k| c_star[k] - carried[k] * y_prev[k]);
-            carried = lanes::<L>(|k| -carried[k] * u_prev[k]);
+            carried = lanes::<L>(|k| flush(-carried[k] * u_prev[k], carried_tol[k]));
         }
 
         // Row m-2: its super-diagonal entry lies in the fill-in column m-1.
@@ -499,13 +539,10 @@ impl ChunkKernel for Periodic<'_> {
         let f_m2 = lanes::<L>(|k| (a[k] - b[k] * f_prev[k]) * r[k]);
         let y_m2 = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
         // The last row's column m-2 holds b_{m-1} besides the carried entry.
-        let b_last: [f64; L] = bt.row(bt.sub, last, l0);
         carried = lanes::<L>(|k| carried[k] + b_last[k]);
         d_star = lanes::<L>(|k| d_star[k] - carried[k] * f_m2[k]);
         c_star = lanes::<L>(|k| c_star[k] - carried[k] * y_m2[k]);
-        let a_last: [f64; L] = bt.row(bt.sup, last, l0);
-        let scale = lanes::<L>(|k| b_last[k].abs() + d_last[k].abs() + a_last[k].abs());
-        check::<L, LOCATE>(&mut ok, &d_star, &scale, l0, last)?;
+        check::<L, LOCATE>(&mut ok, &d_star, &scale_last, l0, last)?;
         if ok.contains(&false) {
             return Err(ChunkError::Pivot(ok.map(|o| !o)));
         }
