@@ -24,6 +24,9 @@ use jbearing_solvers::inverse::{
     ShortBearingFilm, ShortBearingParams, TimeScheme, solve_inverse,
 };
 use jbearing_solvers::load::LoadHistory;
+use jbearing_solvers::reynolds::{
+    GridParams, Groove as ReynoldsGroove, ReynoldsParams, TimeScheme as ReynoldsTimeScheme,
+};
 use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
 use ndarray::Array3;
 
@@ -183,6 +186,50 @@ pub fn run_rigorous(
 pub const RIGOROUS_MISSING: &str = "the mass-conserving Reynolds (JFO) film is not part of this \
      build yet: this report holds the mobility method only (the inverse solver is wired; \
      solver.rigorous_film = \"short_bearing\" runs it with the analytic short-bearing film)";
+
+/// The Reynolds (JFO) film parameters of the case: what the `RigorousFilm::Reynolds` arm of
+/// [`run_rigorous`] hands to the inverse solver's Reynolds film adapter once that adapter is in
+/// the solvers' module tree (`solvers/src/inverse/reynolds_film.rs` is a draft on main):
+///
+/// ```text
+///   RigorousFilm::Reynolds => {
+///       let mut film = ReynoldsFilm::new(reynolds_params(case))?;
+///       solve_inverse(&inverse_params(case), &CaseHistory::new(case), &mut film, &mut adapter)
+///   }
+/// ```
+pub fn reynolds_params(case: &Case) -> ReynoldsParams {
+    ReynoldsParams {
+        bulk_modulus: case.bulk_modulus,
+        cavitation_pressure: case.cavitation_pressure,
+        ambient_pressure: case.ambient_pressure,
+        grooves: case
+            .grooves
+            .iter()
+            .map(|g| ReynoldsGroove {
+                center_angle: g.center_angle,
+                center_z: g.axial_center,
+                angular_width: g.circumferential_length / case.radius,
+                axial_width: g.axial_width,
+                cutoff_film_fraction: case.starved_film_fraction,
+            })
+            .collect(),
+        grid: GridParams {
+            n_theta: case.n_theta,
+            n_z: case.n_z,
+        },
+        time_scheme: if case.solver.crank_nicolson {
+            ReynoldsTimeScheme::CrankNicolson
+        } else {
+            ReynoldsTimeScheme::BackwardEuler
+        },
+        ..ReynoldsParams::plain(
+            case.radius,
+            case.length,
+            case.radial_clearance,
+            case.viscosity,
+        )
+    }
+}
 
 /// The inverse solver's settings from the case's `[solver]` and `[output]` tables.
 pub fn inverse_params(case: &Case) -> InverseParams {
