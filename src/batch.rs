@@ -243,7 +243,13 @@ pub fn summary_table(entries: &[BatchEntry]) -> String {
             }
             Ok(o) => {
                 for m in &o.report.methods {
-                    let _ = write!(s, "{:<26} {:<10} {:<8}", o.report.case_name, m.method, "ok");
+                    let _ = write!(
+                        s,
+                        "{:<26} {:<10} {:<8}",
+                        o.report.case_name,
+                        m.method.as_str(),
+                        "ok"
+                    );
                     for (col, _) in COLUMNS {
                         let v = o
                             .report
