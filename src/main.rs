@@ -3,12 +3,6 @@
 
 use clap::Parser;
 
-/// Dynamically loaded journal bearings with mass-conserving (JFO) cavitation.
-#[derive(Debug, Parser)]
-#[command(version, about, long_about = None)]
-struct Cli {}
-
-fn main() -> anyhow::Result<()> {
-    let _cli = Cli::parse();
-    Ok(())
+fn main() -> std::process::ExitCode {
+    jbearing::cli::main_with(jbearing::cli::Cli::parse())
 }

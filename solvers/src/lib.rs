@@ -9,15 +9,33 @@
 //! runs reaches the caller through observer traits, never through a print.
 //!
 //! Modules
+//! - [`closed_form`]: the seeds' closed-form film models for a moving journal (short and long
+//!   bearing, Sommerfeld and Gumbel films, Pinkus–Sternlicht) and their static equilibrium.
 //! - [`tridiagonal`]: the line kernels of the ADI sweeps: Thomas for Dirichlet lines and Yu &
 //!   Sawicki's modified Thomas for periodic (circumferential) lines.
+//! - [`load`]: load histories shared by the mobility method and the inverse solver: periodic
+//!   load tables, synthetic loads, and the [`load::LoadHistory`] trait (W(t), ω_j, ω_b, p_feed).
+//! - [`inverse`]: the inverse dynamic-load problem (load history → journal orbit): Newton on the
+//!   eccentricity per time step, run-in, cycles to a periodic solution, per-step time series.
 //! - [`mobility`]: Booker's mobility method (short-bearing closed forms, finite-length mobility
 //!   map, adaptive orbit integration to a periodic cycle, h_min / p_max / flow / power loss).
+//! - [`ritz`]: the Ritz method of seed 001 for the finite bearing with a film on 0 … π.
+//! - [`slider_crank`]: a single-cylinder slider-crank compressor (polytropic cylinder cycle,
+//!   two-mass rod) giving the main- and rod-bearing loads, the rod's angular velocity and the rod
+//!   bearing's feed pressure through the crank drilling (the compressor cases of Yu & Sawicki).
+//! - [`squeeze_film`]: the finite-length pure-squeeze film under the Reynolds condition
+//!   (finite differences + active set), the source of the finite-length mobility map.
 //! - [`reynolds`]: the universal (Elrod–Vijayaraghavan, mass-conserving) Reynolds equation on a
 //!   θ × z grid: steady and time-stepped films, grooves and supply cut-off, ADI-preconditioned
 //!   Krylov solve with a sparse-LU oracle, outputs (force, h_min, p_max, flows, power loss) and
 //!   the steady load → eccentricity Newton solve.
 
+pub mod closed_form;
+pub mod inverse;
+pub mod load;
 pub mod mobility;
 pub mod reynolds;
+pub mod ritz;
+pub mod slider_crank;
+pub mod squeeze_film;
 pub mod tridiagonal;

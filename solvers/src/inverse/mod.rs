@@ -1,0 +1,168 @@
+//! The inverse dynamic-load problem: the load history is given, the journal orbit is sought.
+//!
+//! # The equation
+//!
+//! The journal is massless (design.md §1): at every instant the film force balances the load
+//! that the machine applies to the journal,
+//!
+//! ```text
+//!   r(ε^{n+1}) = F_film(ε^{n+1}; film history up to t^n) + W(t^{n+1}) = 0        (design.md §4)
+//! ```
+//!
+//! The film force depends on ε^{n+1} directly (film thickness h = c − e·n) and through the time
+//! derivative of the film content (squeeze), so each time step is a 2×2 nonlinear system in the
+//! eccentricity ratio vector ε = e/c. Yu & Sawicki (2002, seed 002, "inverse solution": Newton on
+//! the journal centre position per time step) solve it by Newton's method; so do we:
+//!
+//! ```text
+//!   J Δε = −r(ε_k),   J = ∂F_film/∂ε  (2×2: forward differences, or Broyden updates
+//!                                       carried across steps and refreshed by differences
+//!                                       when they stop reducing |r|)
+//!   ε_{k+1} = ε_k + λ Δε,  λ ≤ 1 limits |λΔε| ≤ max_newton_step and keeps |ε| < 1 by never
+//!                          closing more than half of the remaining gap 1 − |ε_k| in one update
+//!   converged when |r| / max(|W|, W_ref) ≤ tol                     (default tol = 1e-4)
+//! ```
+//!
+//! The discretised JFO film force is only piecewise smooth in ε: it jumps when a node switches
+//! between full and cavitated film (by up to ~1 % of the load on coarse grids). A step whose
+//! Newton stalls on such a jump (no descent along a fresh difference Jacobian) is accepted at its
+//! best point if |r|/max(|W|, W_ref) ≤ `accept_tolerance` (default 1e-2) and counted in
+//! [`InverseInfo::stalled_steps`]; above that it is an error.
+//!
+//! # Time marching
+//!
+//! ```text
+//!   run-in  t ∈ [−T_r, 0]:  ε = 0, φ = 1 (full film), quasi-load s(t)·W(0), s: 0 → 1 smoothstep
+//!   cycle k t ∈ [kτ, (k+1)τ]: N = cycle_deg / Δφ_c steps of dt = τ/N
+//!   stop when max_i |ε_i^{(k)} − ε_i^{(k−1)}| ≤ tol_ε  and  |Δφ field over the cycle| ≤ tol_φ
+//!   or at max_cycles (the result then carries a warning)
+//! ```
+//!
+//! # Collapse
+//!
+//! A film that cannot carry the load lets the journal approach the wall: |ε| → 1, h_min → 0.
+//! This is a physical outcome, not a numerical failure: when a converged step has
+//! |ε| ≥ `collapse_eccentricity` or h_min below `min_film_floor`, or when Newton can only reduce
+//! the residual by moving towards the wall beyond `collapse_eccentricity`, the run ends with
+//! [`InverseError::Collapse`] naming time, crank angle, residual and ε. A step that fails for
+//! any other reason is [`InverseError::NewtonFailed`] with the same numbers. No NaN leaves.
+//!
+//! # Film models
+//!
+//! [`FilmModel`] is the one thing the inverse solver needs from a film: step from a state at t^n
+//! to a trial ε^{n+1} and return the film force and the outputs. Two implementations:
+//! - [`ShortBearingFilm`]: Ocvirk's short bearing with Gumbel's half film and a moving journal
+//!   (seed 000 eqs. 18–22; seed 004), analytic, with backward-Euler or Crank–Nicolson time
+//!   discretisation of the journal velocity.
+//! - the universal Reynolds solver (mass-conserving), adapted in `reynolds_film` once available.
+
+mod short_bearing;
+mod solve;
+
+pub use short_bearing::{ShortBearingFilm, ShortBearingParams, ShortBearingState, TimeScheme};
+pub use solve::{
+    CycleSummary, FieldSnapshot, InverseError, InverseInfo, InverseObserver, InverseParams,
+    InversePhase, InverseProgress, InverseSolution, InverseStep, InverseWarning, JacobianMethod,
+    NoObserver, solve_inverse,
+};
+
+use ndarray::Array2;
+use thiserror::Error;
+
+/// Operating conditions of one film step (the instant t^{n+1}).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FilmConditions {
+    /// ω_j (rad/s, fixed frame).
+    pub journal_speed: f64,
+    /// ω_b (rad/s, fixed frame).
+    pub bearing_speed: f64,
+    /// p_feed of each groove (Pa, gauge).
+    pub feed_pressures: Vec<f64>,
+}
+
+/// Fields of one film solution on the film model's grid, indexed [i_θ, i_z].
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilmFields {
+    /// Gauge pressure p (Pa).
+    pub pressure: Array2<f64>,
+    /// φ: density ratio (full film, ≥ 1) or film fraction (cavitated, < 1).
+    pub film_fraction: Array2<f64>,
+    /// Switch function g (1 full film, 0 cavitated).
+    pub switch: Array2<f64>,
+}
+
+/// What a film model returns for one step to a trial ε.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FilmResponse {
+    /// Film force on the journal (N, bearing frame).
+    pub film_force: [f64; 2],
+    /// Minimum film thickness (m).
+    pub min_film_thickness: f64,
+    /// Where it is: (θ (rad), z (m)).
+    pub min_film_location: [f64; 2],
+    /// Peak gauge pressure (Pa).
+    pub max_pressure: f64,
+    /// Where it is: (θ (rad), z (m)).
+    pub max_pressure_location: [f64; 2],
+    /// Cavitated fraction of the film area (0…1).
+    pub cavitated_fraction: f64,
+    /// Oil volume flux out of the ends z = −L/2 and z = +L/2 (m³/s, outflow positive).
+    pub side_leakage: [f64; 2],
+    /// Net flux out of each feed groove into the film (m³/s, signed; negative = back-flow).
+    pub supply_flow: Vec<f64>,
+    /// Friction torque of the film on the journal (N·m, counter-clockwise positive).
+    pub friction_torque_journal: f64,
+    /// Friction torque of the film on the bearing (N·m, counter-clockwise positive).
+    pub friction_torque_bearing: f64,
+    /// Viscous dissipation (W).
+    pub power_loss: f64,
+    /// Inner iterations of the film solve (ADI sweeps); 0 for closed forms.
+    pub sweep_iterations: usize,
+    /// Fields, when the model was asked to capture them ([`FilmModel::set_capture_fields`]).
+    pub fields: Option<FilmFields>,
+}
+
+/// A film model failed to step.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum FilmModelError {
+    /// The trial eccentricity is on or beyond the wall.
+    #[error("trial eccentricity ratio |ε| = {eccentricity} is not inside the clearance")]
+    OutsideClearance { eccentricity: f64 },
+    /// A non-finite value appeared in the film solution.
+    #[error("non-finite {quantity} in the film solution")]
+    NonFinite { quantity: &'static str },
+    /// The underlying film solver failed (its message).
+    #[error("film solver failed: {0}")]
+    Solver(String),
+}
+
+/// A film that can be stepped from its state at t^n to a trial eccentricity at t^n + dt.
+///
+/// `step` must not change the model's physics between calls: the inverse solver calls it
+/// several times from the same `state` with different trial ε (Newton iterations and the
+/// finite-difference Jacobian) and keeps only the state of the accepted trial.
+pub trait FilmModel {
+    /// The film history the next step needs (ε at t^n, film fraction field, journal velocity…).
+    type State: Clone;
+
+    /// The state of a film at rest at eccentricity ratio `eccentricity_ratio` (full film, φ = 1).
+    fn initial_state(&self, eccentricity_ratio: [f64; 2]) -> Self::State;
+
+    /// One time step from `state` (at t^n) to the trial `eccentricity_ratio` at t^n + dt.
+    fn step(
+        &mut self,
+        state: &Self::State,
+        eccentricity_ratio: [f64; 2],
+        dt: f64,
+        conditions: &FilmConditions,
+    ) -> Result<(FilmResponse, Self::State), FilmModelError>;
+
+    /// Largest change between two states' film fields (max |Δφ|) — the φ part of the
+    /// periodicity test. Default 0 (a model without a film field).
+    fn state_change(&self, _a: &Self::State, _b: &Self::State) -> f64 {
+        0.0
+    }
+
+    /// Ask the model to return (or stop returning) fields in [`FilmResponse::fields`].
+    fn set_capture_fields(&mut self, _capture: bool) {}
+}

@@ -1,0 +1,1231 @@
+//! `solve_inverse`: run-in, Newton per time step, cycles to a periodic orbit, time series.
+//!
+//! See the module docs of [`super`] for the equations. Index map of one cycle (N steps):
+//!
+//! ```text
+//!   state:   S_0 ──step 1──> S_1 ──step 2──> … ──step N──> S_N  (= S_0 of the next cycle)
+//!   time:    t_c            t_c+dt           …             t_c+τ
+//!   record:                 steps[0]         …             steps[N−1]  (crank angle Δφ … 360°)
+//! ```
+//!
+//! Cycle numbering in errors and progress: 0 is the run-in, 1, 2, … the load cycles.
+
+use super::{FilmConditions, FilmFields, FilmModel, FilmModelError, FilmResponse};
+use crate::load::LoadHistory;
+use std::time::Instant;
+use thiserror::Error;
+
+/// How the 2×2 Jacobian ∂F/∂ε is obtained.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum JacobianMethod {
+    /// Forward differences at every Newton iteration (2 extra film steps per iteration).
+    FiniteDifference,
+    /// Broyden's (good) rank-one updates, carried across time steps; refreshed by forward
+    /// differences when an update stops reducing the residual.
+    #[default]
+    Broyden,
+}
+
+/// Parameters of the inverse solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InverseParams {
+    /// Time step in crank degrees (default 1°). Rounded so that a whole number of steps fills
+    /// the cycle.
+    pub step_deg: f64,
+    /// Newton tolerance on |F + W| / max(|W|, W_ref) (default 1e-4).
+    pub tolerance: f64,
+    /// W_ref (N) for the tolerance when the load passes near zero; 0 (default) takes 1 % of the
+    /// cycle's peak load.
+    pub reference_load: f64,
+    /// Jacobian by differences or Broyden updates (default Broyden).
+    pub jacobian: JacobianMethod,
+    /// Difference step in ε for the Jacobian (default 1e-6).
+    pub fd_step: f64,
+    /// A step whose Newton stalls — a fresh difference Jacobian gives no descent even after
+    /// halving, or the iteration limit is reached — is accepted at its best point if the
+    /// residual is ≤ `accept_tolerance` (default 1e-2), and counted in
+    /// [`InverseInfo::stalled_steps`]; above it the step fails. Why: the discretised JFO film
+    /// force is piecewise smooth in ε — it jumps by a fraction of a per cent of the load (coarse
+    /// grids) when a node switches between full and cavitated — so `tolerance` may be
+    /// unreachable exactly at a switch. Set it equal to `tolerance` for a strict run.
+    pub accept_tolerance: f64,
+    /// Newton iterations allowed per time step (default 40).
+    pub max_newton_iterations: usize,
+    /// Largest |Δε| of one Newton update (default 0.2).
+    pub max_newton_step: f64,
+    /// |ε| at or beyond which the film has collapsed (default 0.999).
+    pub collapse_eccentricity: f64,
+    /// h_min (m) below which the film has collapsed (default 0: only the ε criterion).
+    pub min_film_floor: f64,
+    /// Steps of the run-in ramp; 0 (default) takes a quarter cycle (at least 8 steps).
+    pub run_in_steps: usize,
+    /// Cycle limit (default 20).
+    pub max_cycles: usize,
+    /// Periodicity tolerance on max_i |ε_i − ε_i(previous cycle)| (default 1e-3, i.e. 0.1 % of
+    /// the clearance: the Newton tolerance 1e-4 leaves step-to-step noise of order 1e-5…1e-4 in
+    /// ε, so a tighter periodicity test needs a tighter Newton tolerance too).
+    pub periodicity_tolerance: f64,
+    /// Periodicity tolerance on the change of the film field over a cycle (max |Δφ|, default
+    /// 1e-3).
+    pub film_state_tolerance: f64,
+    /// Keep the fields of the final cycle every `field_stride` steps (0 = none, default).
+    pub field_stride: usize,
+}
+
+impl Default for InverseParams {
+    fn default() -> Self {
+        Self {
+            step_deg: 1.0,
+            tolerance: 1e-4,
+            reference_load: 0.0,
+            jacobian: JacobianMethod::Broyden,
+            fd_step: 1e-6,
+            accept_tolerance: 1e-2,
+            max_newton_iterations: 40,
+            max_newton_step: 0.2,
+            collapse_eccentricity: 0.999,
+            min_film_floor: 0.0,
+            run_in_steps: 0,
+            max_cycles: 20,
+            periodicity_tolerance: 1e-3,
+            film_state_tolerance: 1e-3,
+            field_stride: 0,
+        }
+    }
+}
+
+/// Phase of the run, for progress reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InversePhase {
+    /// The ramp from ε = 0 to the load at t = 0.
+    RunIn,
+    /// Load cycle number (1, 2, …).
+    Cycle(usize),
+}
+
+/// One progress report (after every accepted step).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InverseProgress {
+    /// Run-in or cycle.
+    pub phase: InversePhase,
+    /// Step within the phase (1-based).
+    pub step: usize,
+    /// Steps in the phase.
+    pub steps: usize,
+    /// Largest number of cycles the run may take.
+    pub max_cycles: usize,
+    /// Time (s); negative during the run-in.
+    pub time: f64,
+    /// Crank angle within the cycle (deg).
+    pub crank_angle_deg: f64,
+    /// ε after the step.
+    pub eccentricity_ratio: [f64; 2],
+    /// Final normalised residual of the step.
+    pub residual: f64,
+    /// Newton iterations of the step.
+    pub newton_iterations: usize,
+}
+
+/// Progress observer (a progress bar, a log).
+pub trait InverseObserver {
+    /// After every accepted time step.
+    fn on_step(&mut self, _progress: &InverseProgress) {}
+    /// After every load cycle, with the periodicity measures of that cycle.
+    fn on_cycle(&mut self, _cycle: usize, _eccentricity_change: f64, _film_state_change: f64) {}
+}
+
+/// An observer that ignores everything.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoObserver;
+
+impl InverseObserver for NoObserver {}
+
+/// One time step of the final cycle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InverseStep {
+    /// Time within the final cycle (s), in (0, τ].
+    pub time: f64,
+    /// Crank angle within the cycle (deg), in (0, cycle].
+    pub crank_angle_deg: f64,
+    /// Load on the journal (N, bearing frame).
+    pub load: [f64; 2],
+    /// Film force on the journal (N, bearing frame).
+    pub film_force: [f64; 2],
+    /// |F + W| / max(|W|, W_ref) at the accepted ε.
+    pub residual: f64,
+    /// ε vector (bearing frame).
+    pub eccentricity_ratio: [f64; 2],
+    /// |ε|.
+    pub eccentricity: f64,
+    /// Angle from the load direction to ε (rad, counter-clockwise positive, (−π, π]).
+    pub attitude_angle: f64,
+    /// h_min (m).
+    pub min_film_thickness: f64,
+    /// (θ, z) of h_min.
+    pub min_film_location: [f64; 2],
+    /// p_max (Pa).
+    pub max_pressure: f64,
+    /// (θ, z) of p_max.
+    pub max_pressure_location: [f64; 2],
+    /// Cavitated area fraction.
+    pub cavitated_fraction: f64,
+    /// Side leakage at z = −L/2 and +L/2 (m³/s).
+    pub side_leakage: [f64; 2],
+    /// Supply flow per groove (m³/s, signed).
+    pub supply_flow: Vec<f64>,
+    /// Power loss (W).
+    pub power_loss: f64,
+    /// Friction torque on the journal (N·m).
+    pub friction_torque_journal: f64,
+    /// Friction torque on the bearing (N·m).
+    pub friction_torque_bearing: f64,
+    /// Newton iterations of this step.
+    pub newton_iterations: usize,
+    /// Film-solver sweeps of the accepted film step.
+    pub sweep_iterations: usize,
+}
+
+/// Fields of the final cycle at one step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldSnapshot {
+    /// Index into [`InverseSolution::steps`].
+    pub step_index: usize,
+    /// Time within the cycle (s).
+    pub time: f64,
+    /// Crank angle (deg).
+    pub crank_angle_deg: f64,
+    /// p, φ, g.
+    pub fields: FilmFields,
+}
+
+/// Averages (time means over the N equally spaced steps of the periodic cycle — the trapezoidal
+/// rule for periodic data) and extremes of the final cycle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CycleSummary {
+    /// Mean |ε|.
+    pub mean_eccentricity: f64,
+    /// Max |ε| and its crank angle (deg).
+    pub max_eccentricity: f64,
+    pub max_eccentricity_crank_angle_deg: f64,
+    /// Min h_min (m) and its crank angle (deg).
+    pub min_film_thickness: f64,
+    pub min_film_thickness_crank_angle_deg: f64,
+    /// Max p_max (Pa) and its crank angle (deg).
+    pub max_pressure: f64,
+    pub max_pressure_crank_angle_deg: f64,
+    /// Mean and max cavitated fraction.
+    pub mean_cavitated_fraction: f64,
+    pub max_cavitated_fraction: f64,
+    /// Mean side leakage per end (m³/s).
+    pub mean_side_leakage: [f64; 2],
+    /// Mean and max total side leakage (m³/s).
+    pub mean_total_side_leakage: f64,
+    pub max_total_side_leakage: f64,
+    /// Mean supply flow per groove and in total (m³/s).
+    pub mean_supply_flow: Vec<f64>,
+    pub mean_total_supply_flow: f64,
+    /// Mean and max power loss (W).
+    pub mean_power_loss: f64,
+    pub max_power_loss: f64,
+    /// Mean friction torques (N·m).
+    pub mean_friction_torque_journal: f64,
+    pub mean_friction_torque_bearing: f64,
+}
+
+/// A result that is usable but not what was asked for.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum InverseWarning {
+    /// The cycle limit was reached before the orbit became periodic.
+    #[error(
+        "not periodic after {cycles} cycles: max |Δε| = {eccentricity_change:.3e} (tolerance {eccentricity_tolerance:.1e}), max |Δφ| = {film_state_change:.3e} (tolerance {film_state_tolerance:.1e})"
+    )]
+    NotPeriodic {
+        cycles: usize,
+        eccentricity_change: f64,
+        eccentricity_tolerance: f64,
+        film_state_change: f64,
+        film_state_tolerance: f64,
+    },
+}
+
+/// Run statistics.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InverseInfo {
+    /// Steps per cycle N and step dt (s).
+    pub steps_per_cycle: usize,
+    pub time_step: f64,
+    /// Period τ (s) and cycle length (crank degrees).
+    pub period: f64,
+    pub cycle_deg: f64,
+    /// Run-in steps.
+    pub run_in_steps: usize,
+    /// Load cycles computed (the last one is the result).
+    pub cycles: usize,
+    /// Whether the periodicity tolerances were met.
+    pub periodic: bool,
+    /// max_i |ε_i − ε_i(previous cycle)| of the last cycle (∞ after a single cycle).
+    pub eccentricity_change: f64,
+    /// Film field change over the last cycle (max |Δφ|).
+    pub film_state_change: f64,
+    /// Set when the result is not periodic.
+    pub warning: Option<InverseWarning>,
+    /// W_ref used in the tolerance (N).
+    pub reference_load: f64,
+    /// Newton iterations in total and the most in one step.
+    pub newton_iterations: usize,
+    pub max_newton_iterations_per_step: usize,
+    /// Film steps evaluated (Newton, Jacobian, fields).
+    pub film_evaluations: usize,
+    /// Finite-difference Jacobians computed.
+    pub jacobian_evaluations: usize,
+    /// Film-solver sweeps summed over all film evaluations.
+    pub sweep_iterations: usize,
+    /// Steps accepted after a Newton stall with tolerance < residual ≤ accept_tolerance, and
+    /// the largest such residual (0 if none).
+    pub stalled_steps: usize,
+    pub max_stalled_residual: f64,
+    /// Wall-clock time of the whole run (s).
+    pub wall_time: f64,
+}
+
+/// The periodic solution: the final cycle's time series, fields, summary and run statistics.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InverseSolution {
+    /// One record per step of the final cycle.
+    pub steps: Vec<InverseStep>,
+    /// Fields of the final cycle every `field_stride` steps.
+    pub fields: Vec<FieldSnapshot>,
+    /// Averages and extremes.
+    pub summary: CycleSummary,
+    /// Statistics.
+    pub info: InverseInfo,
+}
+
+/// Why the inverse solve stopped.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum InverseError {
+    /// A parameter or the load history is unusable.
+    #[error("invalid parameter {name} = {value}")]
+    InvalidParameter { name: &'static str, value: f64 },
+    /// The film cannot carry the load: the journal reached the wall.
+    #[error(
+        "film collapse at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° (cycle {cycle}): |ε| = {eccentricity:.6}, ε = ({:.6}, {:.6}), h_min = {min_film_thickness:.3e} m, residual {residual:.3e}",
+        eccentricity_ratio[0], eccentricity_ratio[1]
+    )]
+    Collapse {
+        time: f64,
+        crank_angle_deg: f64,
+        cycle: usize,
+        eccentricity_ratio: [f64; 2],
+        eccentricity: f64,
+        min_film_thickness: f64,
+        residual: f64,
+    },
+    /// Newton did not converge in the step.
+    #[error(
+        "Newton did not converge at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° (cycle {cycle}) after {iterations} iterations: residual {residual:.3e}, last ε = ({:.6}, {:.6})",
+        eccentricity_ratio[0], eccentricity_ratio[1]
+    )]
+    NewtonFailed {
+        time: f64,
+        crank_angle_deg: f64,
+        cycle: usize,
+        iterations: usize,
+        residual: f64,
+        eccentricity_ratio: [f64; 2],
+    },
+    /// The film model failed at a trial ε.
+    #[error(
+        "film model failed at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° (cycle {cycle}), trial ε = ({:.6}, {:.6}): {source}",
+        eccentricity_ratio[0], eccentricity_ratio[1]
+    )]
+    Film {
+        time: f64,
+        crank_angle_deg: f64,
+        cycle: usize,
+        eccentricity_ratio: [f64; 2],
+        source: FilmModelError,
+    },
+    /// The load history returned a non-finite value.
+    #[error("non-finite {quantity} in the load history at t = {time:.6e} s")]
+    NonFiniteLoad { quantity: &'static str, time: f64 },
+}
+
+/// Where a step is, for error messages.
+#[derive(Clone, Copy)]
+struct Where {
+    time: f64,
+    crank_angle_deg: f64,
+    cycle: usize,
+}
+
+/// Counters shared by all steps.
+#[derive(Default)]
+struct Stats {
+    newton: usize,
+    max_newton: usize,
+    evaluations: usize,
+    jacobians: usize,
+    sweeps: usize,
+    stalled: usize,
+    max_stalled: f64,
+}
+
+/// The Jacobian ∂F/∂ε carried across steps.
+struct Jacobian {
+    m: [[f64; 2]; 2],
+    valid: bool,
+}
+
+/// An accepted step.
+struct Accepted<S> {
+    eps: [f64; 2],
+    response: FilmResponse,
+    state: S,
+    residual: f64,
+    iterations: usize,
+}
+
+fn norm(v: [f64; 2]) -> f64 {
+    v[0].hypot(v[1])
+}
+
+fn smoothstep(x: f64) -> f64 {
+    let x = x.clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
+}
+
+/// Solve the inverse problem for `load` with `film`; progress goes to `observer`.
+///
+/// Returns the periodic solution (or the last cycle with [`InverseInfo::warning`] set when the
+/// cycle limit is reached), or an error: [`InverseError::Collapse`] when the film cannot carry
+/// the load, [`InverseError::NewtonFailed`] / [`InverseError::Film`] when a step fails.
+pub fn solve_inverse<F, L, O>(
+    params: &InverseParams,
+    load: &L,
+    film: &mut F,
+    observer: &mut O,
+) -> Result<InverseSolution, InverseError>
+where
+    F: FilmModel + ?Sized,
+    L: LoadHistory + ?Sized,
+    O: InverseObserver + ?Sized,
+{
+    let start = Instant::now();
+    validate(params)?;
+    let period = load.period();
+    if !(period.is_finite() && period > 0.0) {
+        return Err(InverseError::InvalidParameter {
+            name: "load period",
+            value: period,
+        });
+    }
+    let cycle_deg = load.cycle_deg();
+    if !(cycle_deg.is_finite() && cycle_deg > 0.0) {
+        return Err(InverseError::InvalidParameter {
+            name: "cycle_deg",
+            value: cycle_deg,
+        });
+    }
+    let n = ((cycle_deg / params.step_deg).round() as usize).max(4);
+    let dt = period / n as f64;
+    let run_in = if params.run_in_steps > 0 {
+        params.run_in_steps
+    } else {
+        (n / 4).max(8)
+    };
+
+    // Reference load: 1 % of the peak over the cycle unless given.
+    let mut peak: f64 = 0.0;
+    for i in 0..n {
+        let t = i as f64 * dt;
+        let w = load.load(t);
+        if !(w[0].is_finite() && w[1].is_finite()) {
+            return Err(InverseError::NonFiniteLoad {
+                quantity: "load",
+                time: t,
+            });
+        }
+        peak = peak.max(norm(w));
+    }
+    let w_ref = if params.reference_load > 0.0 {
+        params.reference_load
+    } else {
+        1e-2 * peak
+    };
+    if w_ref.is_nan() || w_ref <= 0.0 {
+        return Err(InverseError::InvalidParameter {
+            name: "reference_load (the load is zero over the whole cycle)",
+            value: w_ref,
+        });
+    }
+
+    let mut stats = Stats::default();
+    let mut jac = Jacobian {
+        m: [[0.0; 2]; 2],
+        valid: false,
+    };
+    let conditions_at = |t: f64| -> Result<FilmConditions, InverseError> {
+        let c = FilmConditions {
+            journal_speed: load.journal_speed(t),
+            bearing_speed: load.bearing_speed(t),
+            feed_pressures: load.feed_pressures(t),
+        };
+        if !(c.journal_speed.is_finite()
+            && c.bearing_speed.is_finite()
+            && c.feed_pressures.iter().all(|p| p.is_finite()))
+        {
+            return Err(InverseError::NonFiniteLoad {
+                quantity: "speed or feed pressure",
+                time: t,
+            });
+        }
+        Ok(c)
+    };
+
+    // ---- run-in: from ε = 0, full film, quasi-load ramped to W(0) at the conditions of t = 0.
+    let mut eps = [0.0; 2];
+    let mut eps_prev = [0.0; 2];
+    let mut state = film.initial_state(eps);
+    let w0 = load.load(0.0);
+    let cond0 = conditions_at(0.0)?;
+    for k in 1..=run_in {
+        let t = -((run_in - k) as f64) * dt;
+        let s = smoothstep(k as f64 / run_in as f64);
+        let w = [s * w0[0], s * w0[1]];
+        let at = Where {
+            time: t,
+            crank_angle_deg: load.crank_angle_deg(t),
+            cycle: 0,
+        };
+        let guess = predict(eps, eps_prev);
+        let acc = newton(
+            params, film, &state, guess, dt, &cond0, w, w_ref, &mut jac, &mut stats, at,
+        )?;
+        eps_prev = eps;
+        eps = acc.eps;
+        state = acc.state;
+        observer.on_step(&InverseProgress {
+            phase: InversePhase::RunIn,
+            step: k,
+            steps: run_in,
+            max_cycles: params.max_cycles,
+            time: t,
+            crank_angle_deg: at.crank_angle_deg,
+            eccentricity_ratio: eps,
+            residual: acc.residual,
+            newton_iterations: acc.iterations,
+        });
+    }
+
+    // ---- cycles until periodic.
+    let mut previous: Option<Vec<[f64; 2]>> = None;
+    let mut records: Vec<InverseStep> = Vec::with_capacity(n);
+    let mut snapshots: Vec<FieldSnapshot> = Vec::new();
+    let mut eccentricity_change = f64::INFINITY;
+    let mut film_state_change = 0.0;
+    let mut periodic = false;
+    let mut cycles = 0;
+    for cycle in 1..=params.max_cycles {
+        cycles = cycle;
+        records.clear();
+        snapshots.clear();
+        let t_c = (cycle - 1) as f64 * period;
+        let state_start = state.clone();
+        for i in 0..n {
+            let tau = (i + 1) as f64 * dt;
+            let t = t_c + tau;
+            let w = load.load(t);
+            if !(w[0].is_finite() && w[1].is_finite()) {
+                return Err(InverseError::NonFiniteLoad {
+                    quantity: "load",
+                    time: t,
+                });
+            }
+            let cond = conditions_at(t)?;
+            let crank = load.crank_angle_deg(tau);
+            let at = Where {
+                time: t,
+                crank_angle_deg: crank,
+                cycle,
+            };
+            let guess = predict(eps, eps_prev);
+            let acc = newton(
+                params, film, &state, guess, dt, &cond, w, w_ref, &mut jac, &mut stats, at,
+            )?;
+            if params.field_stride > 0 && i % params.field_stride == 0 {
+                film.set_capture_fields(true);
+                let again = film.step(&state, acc.eps, dt, &cond);
+                film.set_capture_fields(false);
+                stats.evaluations += 1;
+                let (resp, _) = again.map_err(|source| InverseError::Film {
+                    time: t,
+                    crank_angle_deg: crank,
+                    cycle,
+                    eccentricity_ratio: acc.eps,
+                    source,
+                })?;
+                if let Some(fields) = resp.fields {
+                    snapshots.push(FieldSnapshot {
+                        step_index: i,
+                        time: tau,
+                        crank_angle_deg: crank,
+                        fields,
+                    });
+                }
+            }
+            records.push(record(&acc, w, tau, crank));
+            eps_prev = eps;
+            eps = acc.eps;
+            state = acc.state;
+            observer.on_step(&InverseProgress {
+                phase: InversePhase::Cycle(cycle),
+                step: i + 1,
+                steps: n,
+                max_cycles: params.max_cycles,
+                time: t,
+                crank_angle_deg: crank,
+                eccentricity_ratio: eps,
+                residual: acc.residual,
+                newton_iterations: acc.iterations,
+            });
+        }
+        let current: Vec<[f64; 2]> = records.iter().map(|r| r.eccentricity_ratio).collect();
+        eccentricity_change = match &previous {
+            Some(p) => p
+                .iter()
+                .zip(&current)
+                .map(|(a, b)| norm([a[0] - b[0], a[1] - b[1]]))
+                .fold(0.0, f64::max),
+            None => f64::INFINITY,
+        };
+        film_state_change = film.state_change(&state_start, &state);
+        observer.on_cycle(cycle, eccentricity_change, film_state_change);
+        previous = Some(current);
+        if eccentricity_change <= params.periodicity_tolerance
+            && film_state_change <= params.film_state_tolerance
+        {
+            periodic = true;
+            break;
+        }
+    }
+
+    let warning = (!periodic).then_some(InverseWarning::NotPeriodic {
+        cycles,
+        eccentricity_change,
+        eccentricity_tolerance: params.periodicity_tolerance,
+        film_state_change,
+        film_state_tolerance: params.film_state_tolerance,
+    });
+    let summary = summarize(&records);
+    Ok(InverseSolution {
+        steps: records,
+        fields: snapshots,
+        summary,
+        info: InverseInfo {
+            steps_per_cycle: n,
+            time_step: dt,
+            period,
+            cycle_deg,
+            run_in_steps: run_in,
+            cycles,
+            periodic,
+            eccentricity_change,
+            film_state_change,
+            warning,
+            reference_load: w_ref,
+            newton_iterations: stats.newton,
+            max_newton_iterations_per_step: stats.max_newton,
+            film_evaluations: stats.evaluations,
+            jacobian_evaluations: stats.jacobians,
+            sweep_iterations: stats.sweeps,
+            stalled_steps: stats.stalled,
+            max_stalled_residual: stats.max_stalled,
+            wall_time: start.elapsed().as_secs_f64(),
+        },
+    })
+}
+
+fn validate(p: &InverseParams) -> Result<(), InverseError> {
+    let positive = [
+        ("step_deg", p.step_deg),
+        ("tolerance", p.tolerance),
+        ("fd_step", p.fd_step),
+        ("accept_tolerance", p.accept_tolerance),
+        ("max_newton_step", p.max_newton_step),
+        ("periodicity_tolerance", p.periodicity_tolerance),
+        ("film_state_tolerance", p.film_state_tolerance),
+    ];
+    for (name, value) in positive {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(InverseError::InvalidParameter { name, value });
+        }
+    }
+    if !(p.reference_load.is_finite() && p.reference_load >= 0.0) {
+        return Err(InverseError::InvalidParameter {
+            name: "reference_load",
+            value: p.reference_load,
+        });
+    }
+    if !(p.min_film_floor.is_finite() && p.min_film_floor >= 0.0) {
+        return Err(InverseError::InvalidParameter {
+            name: "min_film_floor",
+            value: p.min_film_floor,
+        });
+    }
+    if !(p.collapse_eccentricity > 0.0 && p.collapse_eccentricity < 1.0) {
+        return Err(InverseError::InvalidParameter {
+            name: "collapse_eccentricity",
+            value: p.collapse_eccentricity,
+        });
+    }
+    if p.max_cycles == 0 {
+        return Err(InverseError::InvalidParameter {
+            name: "max_cycles",
+            value: 0.0,
+        });
+    }
+    if p.max_newton_iterations == 0 {
+        return Err(InverseError::InvalidParameter {
+            name: "max_newton_iterations",
+            value: 0.0,
+        });
+    }
+    Ok(())
+}
+
+/// Linear extrapolation of the orbit, pulled back to ε^n if it would close more than half of
+/// the gap to the wall.
+fn predict(eps: [f64; 2], prev: [f64; 2]) -> [f64; 2] {
+    let g = [2.0 * eps[0] - prev[0], 2.0 * eps[1] - prev[1]];
+    let e = norm(eps);
+    if norm(g) < e + 0.5 * (1.0 - e) {
+        g
+    } else {
+        eps
+    }
+}
+
+fn record<S>(acc: &Accepted<S>, w: [f64; 2], time: f64, crank: f64) -> InverseStep {
+    let r = &acc.response;
+    let e = norm(acc.eps);
+    let attitude = if e > 0.0 && norm(w) > 0.0 {
+        let a = acc.eps[1].atan2(acc.eps[0]) - w[1].atan2(w[0]);
+        // Wrap to (−π, π].
+        let wrapped = a.rem_euclid(std::f64::consts::TAU);
+        if wrapped > std::f64::consts::PI {
+            wrapped - std::f64::consts::TAU
+        } else {
+            wrapped
+        }
+    } else {
+        0.0
+    };
+    InverseStep {
+        time,
+        crank_angle_deg: crank,
+        load: w,
+        film_force: r.film_force,
+        residual: acc.residual,
+        eccentricity_ratio: acc.eps,
+        eccentricity: e,
+        attitude_angle: attitude,
+        min_film_thickness: r.min_film_thickness,
+        min_film_location: r.min_film_location,
+        max_pressure: r.max_pressure,
+        max_pressure_location: r.max_pressure_location,
+        cavitated_fraction: r.cavitated_fraction,
+        side_leakage: r.side_leakage,
+        supply_flow: r.supply_flow.clone(),
+        power_loss: r.power_loss,
+        friction_torque_journal: r.friction_torque_journal,
+        friction_torque_bearing: r.friction_torque_bearing,
+        newton_iterations: acc.iterations,
+        sweep_iterations: r.sweep_iterations,
+    }
+}
+
+fn summarize(steps: &[InverseStep]) -> CycleSummary {
+    let n = steps.len().max(1) as f64;
+    let mean = |f: &dyn Fn(&InverseStep) -> f64| steps.iter().map(f).sum::<f64>() / n;
+    let argmax =
+        |f: &dyn Fn(&InverseStep) -> f64| {
+            steps.iter().map(|s| (f(s), s.crank_angle_deg)).fold(
+                (f64::NEG_INFINITY, 0.0),
+                |a, b| if b.0 > a.0 { b } else { a },
+            )
+        };
+    let (max_e, max_e_at) = argmax(&|s| s.eccentricity);
+    let (neg_h, h_at) = argmax(&|s| -s.min_film_thickness);
+    let (max_p, p_at) = argmax(&|s| s.max_pressure);
+    let groups = steps.first().map_or(0, |s| s.supply_flow.len());
+    let mean_supply: Vec<f64> = (0..groups)
+        .map(|g| mean(&|s| s.supply_flow.get(g).copied().unwrap_or(0.0)))
+        .collect();
+    CycleSummary {
+        mean_eccentricity: mean(&|s| s.eccentricity),
+        max_eccentricity: max_e,
+        max_eccentricity_crank_angle_deg: max_e_at,
+        min_film_thickness: -neg_h,
+        min_film_thickness_crank_angle_deg: h_at,
+        max_pressure: max_p,
+        max_pressure_crank_angle_deg: p_at,
+        mean_cavitated_fraction: mean(&|s| s.cavitated_fraction),
+        max_cavitated_fraction: argmax(&|s| s.cavitated_fraction).0,
+        mean_side_leakage: [mean(&|s| s.side_leakage[0]), mean(&|s| s.side_leakage[1])],
+        mean_total_side_leakage: mean(&|s| s.side_leakage[0] + s.side_leakage[1]),
+        max_total_side_leakage: argmax(&|s| s.side_leakage[0] + s.side_leakage[1]).0,
+        mean_total_supply_flow: mean_supply.iter().sum(),
+        mean_supply_flow: mean_supply,
+        mean_power_loss: mean(&|s| s.power_loss),
+        max_power_loss: argmax(&|s| s.power_loss).0,
+        mean_friction_torque_journal: mean(&|s| s.friction_torque_journal),
+        mean_friction_torque_bearing: mean(&|s| s.friction_torque_bearing),
+    }
+}
+
+/// Newton on r(ε) = F_film(ε) + W for one step; see the module docs of [`super`].
+#[allow(clippy::too_many_arguments)]
+fn newton<F: FilmModel + ?Sized>(
+    params: &InverseParams,
+    film: &mut F,
+    state: &F::State,
+    guess: [f64; 2],
+    dt: f64,
+    cond: &FilmConditions,
+    w: [f64; 2],
+    w_ref: f64,
+    jac: &mut Jacobian,
+    stats: &mut Stats,
+    at: Where,
+) -> Result<Accepted<F::State>, InverseError> {
+    let scale = norm(w).max(w_ref);
+    let mut eval = |eps: [f64; 2], stats: &mut Stats| {
+        stats.evaluations += 1;
+        match film.step(state, eps, dt, cond) {
+            Ok((resp, st)) => {
+                stats.sweeps += resp.sweep_iterations;
+                let r = [resp.film_force[0] + w[0], resp.film_force[1] + w[1]];
+                if !(r[0].is_finite() && r[1].is_finite()) {
+                    return Err(InverseError::Film {
+                        time: at.time,
+                        crank_angle_deg: at.crank_angle_deg,
+                        cycle: at.cycle,
+                        eccentricity_ratio: eps,
+                        source: FilmModelError::NonFinite {
+                            quantity: "film force",
+                        },
+                    });
+                }
+                Ok((resp, st, r))
+            }
+            Err(source) => Err(InverseError::Film {
+                time: at.time,
+                crank_angle_deg: at.crank_angle_deg,
+                cycle: at.cycle,
+                eccentricity_ratio: eps,
+                source,
+            }),
+        }
+    };
+    let collapse = |eps: [f64; 2], h: f64, res: f64| InverseError::Collapse {
+        time: at.time,
+        crank_angle_deg: at.crank_angle_deg,
+        cycle: at.cycle,
+        eccentricity_ratio: eps,
+        eccentricity: norm(eps),
+        min_film_thickness: h,
+        residual: res,
+    };
+
+    let mut eps = guess;
+    let (mut resp, mut st, mut r) = eval(eps, stats)?;
+    let mut res = norm(r) / scale;
+    let mut iterations = 0;
+    let mut fresh = false;
+    // After a stall on a fresh Jacobian, one retry with a secant over a 100× wider difference
+    // step (≥ 1e-3): it averages over the small force jumps of a switching JFO film.
+    let mut wide_tried = false;
+    let mut fd_h = params.fd_step;
+    loop {
+        let e = norm(eps);
+        if e >= params.collapse_eccentricity
+            || (res <= params.tolerance && resp.min_film_thickness < params.min_film_floor)
+        {
+            return Err(collapse(eps, resp.min_film_thickness, res));
+        }
+        if res <= params.tolerance {
+            stats.newton += iterations;
+            stats.max_newton = stats.max_newton.max(iterations);
+            return Ok(Accepted {
+                eps,
+                response: resp,
+                state: st,
+                residual: res,
+                iterations,
+            });
+        }
+        if iterations >= params.max_newton_iterations {
+            stats.newton += iterations;
+            if res <= params.accept_tolerance {
+                stats.stalled += 1;
+                stats.max_stalled = stats.max_stalled.max(res);
+                stats.max_newton = stats.max_newton.max(iterations);
+                if resp.min_film_thickness < params.min_film_floor {
+                    return Err(collapse(eps, resp.min_film_thickness, res));
+                }
+                return Ok(Accepted {
+                    eps,
+                    response: resp,
+                    state: st,
+                    residual: res,
+                    iterations,
+                });
+            }
+            return Err(InverseError::NewtonFailed {
+                time: at.time,
+                crank_angle_deg: at.crank_angle_deg,
+                cycle: at.cycle,
+                iterations,
+                residual: res,
+                eccentricity_ratio: eps,
+            });
+        }
+        iterations += 1;
+        if !jac.valid || params.jacobian == JacobianMethod::FiniteDifference {
+            jac.m = fd_jacobian(&mut eval, eps, resp.film_force, w, fd_h, stats)?;
+            fd_h = params.fd_step;
+            jac.valid = true;
+            fresh = true;
+        }
+        // Solve J Δ = −r.
+        let m = jac.m;
+        let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+        let mut delta = [
+            (-r[0] * m[1][1] + r[1] * m[0][1]) / det,
+            (-r[1] * m[0][0] + r[0] * m[1][0]) / det,
+        ];
+        if !(det != 0.0 && delta[0].is_finite() && delta[1].is_finite()) {
+            if fresh {
+                return Err(InverseError::NewtonFailed {
+                    time: at.time,
+                    crank_angle_deg: at.crank_angle_deg,
+                    cycle: at.cycle,
+                    iterations,
+                    residual: res,
+                    eccentricity_ratio: eps,
+                });
+            }
+            jac.valid = false;
+            continue;
+        }
+        let dn = norm(delta);
+        if dn > params.max_newton_step {
+            let s = params.max_newton_step / dn;
+            delta = [delta[0] * s, delta[1] * s];
+        }
+        // Never close more than half of the remaining gap to the wall.
+        let limit = e + 0.5 * (1.0 - e);
+        let mut lambda = 1.0;
+        while norm([eps[0] + lambda * delta[0], eps[1] + lambda * delta[1]]) > limit {
+            lambda *= 0.5;
+        }
+        // Backtracking on |r|.
+        let mut accepted = false;
+        for _ in 0..8 {
+            let trial = [eps[0] + lambda * delta[0], eps[1] + lambda * delta[1]];
+            let (tresp, tst, tr) = eval(trial, stats)?;
+            let tres = norm(tr) / scale;
+            if tres < res {
+                let s = [trial[0] - eps[0], trial[1] - eps[1]];
+                if params.jacobian == JacobianMethod::Broyden {
+                    broyden(&mut jac.m, s, [tr[0] - r[0], tr[1] - r[1]]);
+                }
+                eps = trial;
+                resp = tresp;
+                st = tst;
+                r = tr;
+                res = tres;
+                accepted = true;
+                fresh = false;
+                break;
+            }
+            if !fresh {
+                // A stale Broyden Jacobian: refresh it before cutting the step.
+                break;
+            }
+            lambda *= 0.5;
+        }
+        if !accepted {
+            if fresh && !wide_tried {
+                wide_tried = true;
+                fd_h = (100.0 * params.fd_step).max(1e-3);
+                jac.valid = false;
+                continue;
+            }
+            if fresh {
+                stats.newton += iterations;
+                if res <= params.accept_tolerance {
+                    stats.stalled += 1;
+                    stats.max_stalled = stats.max_stalled.max(res);
+                    stats.max_newton = stats.max_newton.max(iterations);
+                    if norm(eps) >= params.collapse_eccentricity
+                        || resp.min_film_thickness < params.min_film_floor
+                    {
+                        return Err(collapse(eps, resp.min_film_thickness, res));
+                    }
+                    return Ok(Accepted {
+                        eps,
+                        response: resp,
+                        state: st,
+                        residual: res,
+                        iterations,
+                    });
+                }
+                return Err(InverseError::NewtonFailed {
+                    time: at.time,
+                    crank_angle_deg: at.crank_angle_deg,
+                    cycle: at.cycle,
+                    iterations,
+                    residual: res,
+                    eccentricity_ratio: eps,
+                });
+            }
+            jac.valid = false;
+        }
+    }
+}
+
+type Eval<'a, S> =
+    dyn FnMut([f64; 2], &mut Stats) -> Result<(FilmResponse, S, [f64; 2]), InverseError> + 'a;
+
+/// Forward-difference ∂F/∂ε at ε (column k from a step h along ε_k, taken inwards when the
+/// forward point would leave the clearance).
+fn fd_jacobian<S>(
+    eval: &mut Eval<'_, S>,
+    eps: [f64; 2],
+    force: [f64; 2],
+    w: [f64; 2],
+    h: f64,
+    stats: &mut Stats,
+) -> Result<[[f64; 2]; 2], InverseError> {
+    stats.jacobians += 1;
+    let mut m = [[0.0; 2]; 2];
+    for k in 0..2 {
+        let mut p = eps;
+        p[k] += h;
+        let mut hk = h;
+        if norm(p) >= 1.0 {
+            p[k] = eps[k] - h;
+            hk = -h;
+        }
+        let (_, _, r) = eval(p, stats)?;
+        for i in 0..2 {
+            m[i][k] = (r[i] - w[i] - force[i]) / hk;
+        }
+    }
+    Ok(m)
+}
+
+/// Broyden's good update J ← J + (y − J s) sᵀ / (sᵀ s).
+fn broyden(m: &mut [[f64; 2]; 2], s: [f64; 2], y: [f64; 2]) {
+    let ss = s[0] * s[0] + s[1] * s[1];
+    if ss == 0.0 {
+        return;
+    }
+    for i in 0..2 {
+        let js = m[i][0] * s[0] + m[i][1] * s[1];
+        let d = (y[i] - js) / ss;
+        m[i][0] += d * s[0];
+        m[i][1] += d * s[1];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::load::{ConstantLoad, FnLoad, OperatingHistory};
+    use std::f64::consts::TAU;
+
+    /// A linear spring–damper film: F = −k ε − d ε̇ (backward Euler velocity), optionally
+    /// saturating or poisoned with NaN.
+    #[derive(Clone)]
+    struct Spring {
+        k: f64,
+        d: f64,
+        nan_beyond: f64,
+    }
+
+    impl FilmModel for Spring {
+        type State = [f64; 2];
+        fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
+            e
+        }
+        fn step(
+            &mut self,
+            s: &[f64; 2],
+            e: [f64; 2],
+            dt: f64,
+            _c: &FilmConditions,
+        ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
+            let mut f = [0.0; 2];
+            for i in 0..2 {
+                f[i] = -self.k * e[i] - self.d * (e[i] - s[i]) / dt;
+            }
+            if norm(e) > self.nan_beyond {
+                f[0] = f64::NAN;
+            }
+            Ok((
+                FilmResponse {
+                    film_force: f,
+                    min_film_thickness: 1.0 - norm(e),
+                    power_loss: 1.0,
+                    ..Default::default()
+                },
+                e,
+            ))
+        }
+    }
+
+    fn history(w: [f64; 2]) -> OperatingHistory<ConstantLoad> {
+        OperatingHistory {
+            load: ConstantLoad {
+                load: w,
+                period: 1.0,
+            },
+            journal_speed: 1.0,
+            bearing_speed: 0.0,
+            feed_pressures: vec![],
+        }
+    }
+
+    struct Count(usize, usize);
+    impl InverseObserver for Count {
+        fn on_step(&mut self, p: &InverseProgress) {
+            assert!(p.residual.is_finite());
+            self.0 += 1;
+        }
+        fn on_cycle(&mut self, _c: usize, _e: f64, _f: f64) {
+            self.1 += 1;
+        }
+    }
+
+    #[test]
+    fn spring_equilibrium_by_both_jacobians() {
+        for jacobian in [JacobianMethod::FiniteDifference, JacobianMethod::Broyden] {
+            let mut film = Spring {
+                k: 100.0,
+                d: 0.1,
+                nan_beyond: 2.0,
+            };
+            let params = InverseParams {
+                jacobian,
+                step_deg: 10.0,
+                tolerance: 1e-10,
+                periodicity_tolerance: 1e-9,
+                ..Default::default()
+            };
+            let mut obs = Count(0, 0);
+            let sol = solve_inverse(&params, &history([30.0, -40.0]), &mut film, &mut obs).unwrap();
+            // F + W = 0 ⇔ ε = W/k = (0.3, −0.4) at rest; residual tolerance 1e-10.
+            let e = sol.steps.last().unwrap().eccentricity_ratio;
+            assert!(
+                (e[0] - 0.3).abs() < 1e-9 && (e[1] + 0.4).abs() < 1e-9,
+                "{e:?}"
+            );
+            assert!(sol.info.periodic);
+            assert_eq!(obs.0, sol.info.run_in_steps + 36 * sol.info.cycles);
+            assert_eq!(obs.1, sol.info.cycles);
+            assert_eq!(sol.steps.len(), 36);
+            assert!((sol.steps[35].crank_angle_deg - 360.0).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn a_load_beyond_the_film_is_collapse_with_numbers() {
+        // The spring carries at most k·1 = 100 N; 150 N pushes the journal to the wall.
+        let mut film = Spring {
+            k: 100.0,
+            d: 0.0,
+            nan_beyond: 2.0,
+        };
+        let err = solve_inverse(
+            &InverseParams::default(),
+            &history([150.0, 0.0]),
+            &mut film,
+            &mut NoObserver,
+        )
+        .unwrap_err();
+        match err {
+            InverseError::Collapse {
+                eccentricity,
+                residual,
+                time,
+                ..
+            } => {
+                assert!((0.999..1.0).contains(&eccentricity));
+                assert!(residual.is_finite() && time.is_finite());
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_nan_film_force_is_an_error_naming_the_trial() {
+        let mut film = Spring {
+            k: 100.0,
+            d: 0.0,
+            nan_beyond: 0.2,
+        };
+        let err = solve_inverse(
+            &InverseParams::default(),
+            &history([50.0, 0.0]),
+            &mut film,
+            &mut NoObserver,
+        )
+        .unwrap_err();
+        assert!(
+            matches!(
+                err,
+                InverseError::Film {
+                    source: FilmModelError::NonFinite { .. },
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+    }
+
+    #[test]
+    fn cycle_limit_gives_a_warning_not_an_error() {
+        // A spring with a long time constant (d/k = 10 periods) cannot settle in 2 cycles.
+        let mut film = Spring {
+            k: 100.0,
+            d: 1000.0,
+            nan_beyond: 2.0,
+        };
+        let load = OperatingHistory {
+            load: FnLoad {
+                period: 1.0,
+                load: |t: f64| [30.0 * (TAU * t).cos(), 0.0],
+            },
+            journal_speed: 1.0,
+            bearing_speed: 0.0,
+            feed_pressures: vec![],
+        };
+        let params = InverseParams {
+            max_cycles: 2,
+            step_deg: 10.0,
+            tolerance: 1e-10,
+            periodicity_tolerance: 1e-8,
+            ..Default::default()
+        };
+        let sol = solve_inverse(&params, &load, &mut film, &mut NoObserver).unwrap();
+        assert!(!sol.info.periodic);
+        assert!(matches!(
+            sol.info.warning,
+            Some(InverseWarning::NotPeriodic { cycles: 2, .. })
+        ));
+        assert!((sol.summary.mean_power_loss - 1.0).abs() < 1e-12);
+    }
+}

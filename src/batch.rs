@@ -1,0 +1,269 @@
+//! Batch runs: many cases in parallel (rayon), a progress bar per case (indicatif) showing the
+//! method, the cycle and the residual, and a summary table at the end (printed and as CSV).
+//! A failing case is reported in the table and does not stop the others.
+//!
+//! ```text
+//!   [FILES | DIR/*.toml] ──rayon par_iter──► run_case_file (one per case, own bar)
+//!                                           ├─ Ok  → row: h_min, mean flow, mean power loss, …
+//!                                           └─ Err → row: status "failed: <message>"
+//!   ──► batch_summary.csv in --out, and the same table on stdout
+//! ```
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::Duration;
+
+use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+
+use crate::output::Method;
+use crate::run::{CaseOutcome, RunError, RunObserver, run_case_file};
+
+/// Outcome of one case in a batch.
+#[derive(Debug)]
+pub struct BatchEntry {
+    /// The case file.
+    pub path: PathBuf,
+    /// Its report and files, or why it failed.
+    pub result: Result<CaseOutcome, RunError>,
+}
+
+/// Expand directories into their `*.toml` files (sorted), keep files as given.
+pub fn collect_cases(inputs: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    for p in inputs {
+        if p.is_dir() {
+            let mut v: Vec<PathBuf> = std::fs::read_dir(p)?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|f| f.extension().is_some_and(|x| x == "toml"))
+                .collect();
+            v.sort();
+            out.extend(v);
+        } else {
+            out.push(p.clone());
+        }
+    }
+    Ok(out)
+}
+
+struct BarObserver {
+    bars: Mutex<Vec<(String, ProgressBar)>>,
+}
+
+impl BarObserver {
+    fn with_bar(&self, case: &str, f: impl FnOnce(&ProgressBar)) {
+        if let Some((_, b)) = self
+            .bars
+            .lock()
+            .expect("progress bars")
+            .iter()
+            .find(|(n, _)| n == case)
+        {
+            f(b);
+        }
+    }
+}
+
+impl RunObserver for BarObserver {
+    fn method_started(&self, case: &str, method: Method) {
+        self.with_bar(case, |b| b.set_message(format!("{method}: starting")));
+    }
+    fn cycle_done(&self, case: &str, method: Method, cycle: usize, residual: f64) {
+        self.with_bar(case, |b| {
+            b.set_message(format!("{method}: cycle {cycle}, residual {residual:.2e}"))
+        });
+    }
+    fn progress(
+        &self,
+        case: &str,
+        method: Method,
+        cycle: usize,
+        step: usize,
+        steps: usize,
+        residual: f64,
+    ) {
+        let phase = if cycle == 0 {
+            "run-in".to_string()
+        } else {
+            format!("cycle {cycle}")
+        };
+        self.with_bar(case, |b| {
+            b.set_message(format!(
+                "{method}: {phase}, step {step}/{steps}, residual {residual:.2e}"
+            ))
+        });
+    }
+    fn method_done(&self, case: &str, method: Method) {
+        self.with_bar(case, |b| b.set_message(format!("{method}: done")));
+    }
+}
+
+/// Run every case in `paths` with up to `jobs` threads (0 = all cores), writing into `out_dir`.
+/// Progress bars go to stderr when `progress` is true. Returns one entry per case, in order.
+pub fn run_batch(
+    paths: &[PathBuf],
+    out_dir: &Path,
+    jobs: usize,
+    progress: bool,
+) -> Vec<BatchEntry> {
+    let multi = MultiProgress::with_draw_target(if progress {
+        ProgressDrawTarget::stderr()
+    } else {
+        ProgressDrawTarget::hidden()
+    });
+    let style = ProgressStyle::with_template("{spinner} {prefix:24} {elapsed:>4} {wide_msg}")
+        .expect("static template");
+    let observer = BarObserver {
+        bars: Mutex::new(Vec::new()),
+    };
+    let mut bars = Vec::new();
+    for p in paths {
+        let name = p
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let bar = multi.add(ProgressBar::new_spinner());
+        bar.set_style(style.clone());
+        bar.set_prefix(name.clone());
+        bar.set_message("queued");
+        bar.enable_steady_tick(Duration::from_millis(200));
+        bars.push(bar.clone());
+        observer
+            .bars
+            .lock()
+            .expect("progress bars")
+            .push((name, bar));
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .expect("thread pool");
+    let entries: Vec<BatchEntry> = pool.install(|| {
+        paths
+            .par_iter()
+            .zip(bars.par_iter())
+            .map(|(p, bar)| {
+                bar.set_message("reading the case");
+                let result = run_case_file(p, out_dir, &observer);
+                match &result {
+                    Ok(o) => bar.finish_with_message(format!("done, {} files", o.files.len())),
+                    Err(e) => bar.finish_with_message(format!("FAILED: {e}")),
+                }
+                BatchEntry {
+                    path: p.clone(),
+                    result,
+                }
+            })
+            .collect()
+    });
+    multi.clear().ok();
+    entries
+}
+
+/// Columns of the summary table: (summary row, header with display units).
+const COLUMNS: [(&str, &str); 4] = [
+    ("min_film_thickness_min", "h_min,min [µm]"),
+    ("side_leakage_mean", "Q_side,mean [cm³/s]"),
+    ("power_loss_mean", "P_loss,mean [W]"),
+    ("eccentricity_ratio_max", "ε_max [-]"),
+];
+
+fn scale(name: &str) -> f64 {
+    match name {
+        "min_film_thickness_min" => 1e6,
+        "side_leakage_mean" => 1e6,
+        _ => 1.0,
+    }
+}
+
+/// The summary as CSV text: one row per case and method, failed cases with their message.
+pub fn summary_csv(entries: &[BatchEntry]) -> String {
+    let mut s = String::from(
+        "case,status,method,min_film_thickness_min_m,side_leakage_mean_m3_s,power_loss_mean_w,\
+         eccentricity_ratio_max,message\n",
+    );
+    for e in entries {
+        let name = e
+            .path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        match &e.result {
+            Err(err) => {
+                let msg = err.to_string().replace('"', "'");
+                let _ = writeln!(s, "{name},failed,,,,,,\"{msg}\"");
+            }
+            Ok(o) => {
+                for m in &o.report.methods {
+                    let _ = write!(s, "{},ok,{}", o.report.case_name, m.method);
+                    for (col, _) in COLUMNS {
+                        let v = o
+                            .report
+                            .summary
+                            .iter()
+                            .find(|r| r.name == col)
+                            .and_then(|r| r.value(m.method));
+                        let _ = write!(s, ",{}", v.map(|v| format!("{v:.6e}")).unwrap_or_default());
+                    }
+                    let note = if o
+                        .report
+                        .parameters
+                        .iter()
+                        .any(|p| p.key == "rigorous_status")
+                    {
+                        "rigorous method not in this build"
+                    } else {
+                        ""
+                    };
+                    let _ = writeln!(s, ",{note}");
+                }
+            }
+        }
+    }
+    s
+}
+
+/// The summary as a fixed-width text table.
+pub fn summary_table(entries: &[BatchEntry]) -> String {
+    let mut s = format!("{:<26} {:<10} {:<8}", "case", "method", "status");
+    for (_, h) in COLUMNS {
+        let _ = write!(s, " {h:>20}");
+    }
+    s.push('\n');
+    for e in entries {
+        let name = e
+            .path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        match &e.result {
+            Err(err) => {
+                let _ = writeln!(s, "{name:<26} {:<10} FAILED   {err}", "-");
+            }
+            Ok(o) => {
+                for m in &o.report.methods {
+                    let _ = write!(s, "{:<26} {:<10} {:<8}", o.report.case_name, m.method, "ok");
+                    for (col, _) in COLUMNS {
+                        let v = o
+                            .report
+                            .summary
+                            .iter()
+                            .find(|r| r.name == col)
+                            .and_then(|r| r.value(m.method));
+                        match v {
+                            Some(v) => {
+                                let _ = write!(s, " {:>20.4}", v * scale(col));
+                            }
+                            None => {
+                                let _ = write!(s, " {:>20}", "–");
+                            }
+                        }
+                    }
+                    s.push('\n');
+                }
+            }
+        }
+    }
+    s
+}

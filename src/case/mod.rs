@@ -1,0 +1,1164 @@
+//! Case files: one bearing, its lubricant, its load / speed / feed histories, the grid, the
+//! solver settings and the outputs, in TOML.
+//!
+//! ```text
+//!   case.toml ──toml+serde (deny_unknown_fields)──► schema::CaseFile (as written, units in keys)
+//!            ──resolve (units::, CSV tables, checks)──► Case (SI, defaults filled in, validated)
+//! ```
+//!
+//! Every key is documented in `cases/README.md`. Errors name the file, the key and the line
+//! ([`CaseError`]). Histories are periodic over the cycle (`operation.cycle_deg`) and given
+//! against crank angle in degrees, inline or from a CSV file whose path is relative to the case
+//! file.
+
+pub mod compressor;
+pub mod error;
+pub mod schema;
+pub mod units;
+
+use std::path::{Path, PathBuf};
+
+use jbearing_solvers::mobility::{LoadInterpolation, TabulatedLoad};
+
+pub use self::error::{CaseError, Locator};
+use self::schema::*;
+use self::units::{Quantity, column_factor, deg_to_rad, rpm_to_rad_s};
+use crate::output::{Geometry, InputFile, Parameter};
+
+/// A rectangular feed groove, fixed in the bearing frame, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Groove {
+    /// Angle of the groove's centre θ_g, from +x towards +y (rad).
+    pub center_angle: f64,
+    /// Axial position of the groove's centre (m), 0 = mid-plane.
+    pub axial_center: f64,
+    /// Circumferential length on the bearing surface (m).
+    pub circumferential_length: f64,
+    /// Axial width (m).
+    pub axial_width: f64,
+}
+
+/// A periodic history over crank angle: a constant or a table, linearly interpolated and wrapped.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Schedule {
+    /// The same value at all times.
+    Constant(f64),
+    /// Values at increasing crank angles (deg) spanning less than one cycle.
+    Table {
+        /// Crank angles (deg).
+        angles_deg: Vec<f64>,
+        /// Values, SI.
+        values: Vec<f64>,
+    },
+}
+
+impl Schedule {
+    /// Value at crank angle `angle_deg` for a cycle of `cycle_deg`.
+    pub fn at(&self, angle_deg: f64, cycle_deg: f64) -> f64 {
+        match self {
+            Schedule::Constant(v) => *v,
+            Schedule::Table { angles_deg, values } => {
+                let n = angles_deg.len();
+                if n == 1 {
+                    return values[0];
+                }
+                let a0 = angles_deg[0];
+                let x = a0 + (angle_deg - a0).rem_euclid(cycle_deg);
+                let i = angles_deg.partition_point(|&a| a <= x).max(1) - 1;
+                let (xa, ya) = (angles_deg[i], values[i]);
+                let (xb, yb) = if i + 1 < n {
+                    (angles_deg[i + 1], values[i + 1])
+                } else {
+                    (a0 + cycle_deg, values[0])
+                };
+                ya + (yb - ya) * ((x - xa) / (xb - xa)).clamp(0.0, 1.0)
+            }
+        }
+    }
+
+    /// Time mean over one cycle (trapezoidal on the wrapped table).
+    pub fn mean(&self, cycle_deg: f64) -> f64 {
+        match self {
+            Schedule::Constant(v) => *v,
+            Schedule::Table { .. } => {
+                let n = 3600;
+                (0..n)
+                    .map(|k| self.at(k as f64 * cycle_deg / n as f64, cycle_deg))
+                    .sum::<f64>()
+                    / n as f64
+            }
+        }
+    }
+}
+
+/// What to compute.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Methods {
+    /// Booker's mobility method.
+    pub mobility: bool,
+    /// The rigorous (JFO) inverse solution.
+    pub rigorous: bool,
+    /// Static-equilibrium table of the closed-form models.
+    pub closed_form: bool,
+}
+
+/// Which mobility model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MobilityModelChoice {
+    /// Booker's closed-form short-bearing mobility (seed 000 eqs. 28–35).
+    Booker,
+    /// The exact short-bearing mobility (inverted squeeze integrals).
+    ExactShort,
+    /// The finite-length map tabulated from pure-squeeze solutions.
+    Map,
+}
+
+/// Which film the inverse ("rigorous") solver steps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RigorousFilm {
+    /// The mass-conserving universal Reynolds (JFO) film: the rigorous method proper.
+    Reynolds,
+    /// The analytic short-bearing film (Gumbel half film, moving journal): the inverse solver's
+    /// closed-form film, not mass-conserving; for comparisons and quick checks.
+    ShortBearing,
+}
+
+/// Solver settings, resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolverOptions {
+    /// Time steps per cycle of the rigorous solver.
+    pub time_steps_per_cycle: usize,
+    /// Most cycles before giving up on periodicity.
+    pub max_cycles: usize,
+    /// Periodicity tolerance on ε (max over the cycle of |ε(t) − ε(t − τ)|).
+    pub periodicity_tolerance: f64,
+    /// Newton tolerance on the force residual, relative to the peak load.
+    pub force_tolerance: f64,
+    /// Film-collapse limit on |ε|.
+    pub eccentricity_limit: f64,
+    /// Crank–Nicolson time stepping (else backward Euler).
+    pub crank_nicolson: bool,
+    /// Mobility model.
+    pub mobility_model: MobilityModelChoice,
+    /// ε at the start.
+    pub initial_eccentricity: [f64; 2],
+    /// Film of the inverse solver.
+    pub rigorous_film: RigorousFilm,
+}
+
+/// Output settings, resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputOptions {
+    /// Samples of the stored cycle.
+    pub samples_per_cycle: usize,
+    /// Field snapshots of the final cycle.
+    pub field_snapshots: usize,
+    /// Write the PNG plots.
+    pub plots: bool,
+}
+
+/// A validated case in SI units.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// Name (output files are named after it).
+    pub name: String,
+    /// One line of description.
+    pub description: String,
+    /// The case file, if read from one.
+    pub path: Option<PathBuf>,
+    /// The TOML text as given.
+    pub text: String,
+    /// CSV tables it refers to, verbatim.
+    pub input_files: Vec<InputFile>,
+    /// Bearing radius R (m).
+    pub radius: f64,
+    /// Bearing length L (m).
+    pub length: f64,
+    /// Radial clearance c (m).
+    pub radial_clearance: f64,
+    /// Feed grooves.
+    pub grooves: Vec<Groove>,
+    /// Viscosity μ (Pa·s).
+    pub viscosity: f64,
+    /// Bulk modulus β (Pa).
+    pub bulk_modulus: f64,
+    /// Cavitation pressure, gauge (Pa).
+    pub cavitation_pressure: f64,
+    /// Ambient pressure, gauge (Pa).
+    pub ambient_pressure: f64,
+    /// Film fraction held in a groove whose feed is cut off.
+    pub starved_film_fraction: f64,
+    /// Cycle length (crank degrees).
+    pub cycle_deg: f64,
+    /// Crank speed Ω (rad/s).
+    pub crank_speed: f64,
+    /// Journal speed ω_j (rad/s), fixed frame.
+    pub journal_speed: Schedule,
+    /// Bearing speed ω_b (rad/s), fixed frame.
+    pub bearing_speed: Schedule,
+    /// Load on the journal in the bearing frame: crank angles (deg) and forces (N).
+    pub load_angles_deg: Vec<f64>,
+    /// Forces (N) at `load_angles_deg`.
+    pub load_forces: Vec<[f64; 2]>,
+    /// Interpolation of the load table.
+    pub load_interpolation: LoadInterpolation,
+    /// Feed pressure, gauge (Pa), the same at every groove.
+    pub feed_pressure: Schedule,
+    /// Grid nodes around (periodic).
+    pub n_theta: usize,
+    /// Grid nodes along (ends included).
+    pub n_z: usize,
+    /// Solver settings.
+    pub solver: SolverOptions,
+    /// Output settings.
+    pub output: OutputOptions,
+    /// What to compute.
+    pub methods: Methods,
+}
+
+impl Case {
+    /// Read and resolve the case file at `path`.
+    pub fn from_file(path: &Path) -> Result<Self, CaseError> {
+        let text = std::fs::read_to_string(path).map_err(|source| CaseError::Read {
+            file: path.to_path_buf(),
+            source,
+        })?;
+        Self::from_text(&text, path)
+    }
+
+    /// Resolve a case from its TOML `text`; `path` names it in messages and anchors CSV paths.
+    pub fn from_text(text: &str, path: &Path) -> Result<Self, CaseError> {
+        let ctx = Ctx::new(text, path);
+        let raw: CaseFile = ctx.parse()?;
+        resolve(raw, &ctx)
+    }
+
+    /// Geometry for the writers.
+    pub fn geometry(&self) -> Geometry {
+        Geometry {
+            radius: self.radius,
+            length: self.length,
+            radial_clearance: self.radial_clearance,
+        }
+    }
+
+    /// Period of one cycle τ (s).
+    pub fn period(&self) -> f64 {
+        deg_to_rad(self.cycle_deg) / self.crank_speed
+    }
+
+    /// The load table as the solvers take it.
+    pub fn load(&self) -> TabulatedLoad {
+        TabulatedLoad::new(
+            self.load_angles_deg.clone(),
+            self.load_forces.clone(),
+            self.cycle_deg,
+            self.crank_speed,
+            self.load_interpolation,
+        )
+        .expect("validated when the case was resolved")
+    }
+
+    /// Resolved parameters, for the report.
+    pub fn parameters(&self) -> Vec<Parameter> {
+        let mut p = vec![
+            Parameter::number("radius", self.radius, "m", "bearing (journal) radius R"),
+            Parameter::number("length", self.length, "m", "bearing length L"),
+            Parameter::number(
+                "radial_clearance",
+                self.radial_clearance,
+                "m",
+                "radial clearance c",
+            ),
+            Parameter::number("viscosity", self.viscosity, "Pa s", "dynamic viscosity"),
+            Parameter::number(
+                "bulk_modulus",
+                self.bulk_modulus,
+                "Pa",
+                "lubricant bulk modulus",
+            ),
+            Parameter::number(
+                "cavitation_pressure",
+                self.cavitation_pressure,
+                "Pa",
+                "cavitation pressure, gauge",
+            ),
+            Parameter::number(
+                "ambient_pressure",
+                self.ambient_pressure,
+                "Pa",
+                "ambient pressure, gauge",
+            ),
+            Parameter::number(
+                "starved_film_fraction",
+                self.starved_film_fraction,
+                "1",
+                "film fraction of a groove whose feed is cut off",
+            ),
+            Parameter::number(
+                "cycle",
+                self.cycle_deg,
+                "degree",
+                "cycle length in crank angle",
+            ),
+            Parameter::number("crank_speed", self.crank_speed, "rad/s", "crank speed"),
+            Parameter::number(
+                "journal_speed_mean",
+                self.journal_speed.mean(self.cycle_deg),
+                "rad/s",
+                "cycle mean of the journal speed (fixed frame)",
+            ),
+            Parameter::number(
+                "bearing_speed_mean",
+                self.bearing_speed.mean(self.cycle_deg),
+                "rad/s",
+                "cycle mean of the bearing speed (fixed frame)",
+            ),
+            Parameter::integer("n_theta", self.n_theta as i64, "grid nodes around"),
+            Parameter::integer("n_z", self.n_z as i64, "grid nodes along"),
+            Parameter::integer(
+                "time_steps_per_cycle",
+                self.solver.time_steps_per_cycle as i64,
+                "time steps per cycle (rigorous)",
+            ),
+            Parameter::integer("max_cycles", self.solver.max_cycles as i64, "most cycles"),
+            Parameter::number(
+                "periodicity_tolerance",
+                self.solver.periodicity_tolerance,
+                "1",
+                "periodicity tolerance on the eccentricity ratio",
+            ),
+            Parameter::number(
+                "force_tolerance",
+                self.solver.force_tolerance,
+                "1",
+                "Newton tolerance on the force residual, relative to the peak load",
+            ),
+            Parameter::text(
+                "mobility_model",
+                match self.solver.mobility_model {
+                    MobilityModelChoice::Booker => "booker",
+                    MobilityModelChoice::ExactShort => "exact_short",
+                    MobilityModelChoice::Map => "map",
+                },
+                "mobility model",
+            ),
+            Parameter::text(
+                "rigorous_film",
+                match self.solver.rigorous_film {
+                    RigorousFilm::Reynolds => "reynolds",
+                    RigorousFilm::ShortBearing => "short_bearing",
+                },
+                "film model of the inverse solver",
+            ),
+            Parameter::flag(
+                "crank_nicolson",
+                self.solver.crank_nicolson,
+                "Crank-Nicolson time stepping (else backward Euler)",
+            ),
+        ];
+        for (i, g) in self.grooves.iter().enumerate() {
+            p.push(Parameter::number(
+                &format!("groove{i}_center_angle"),
+                g.center_angle,
+                "rad",
+                "groove centre angle, bearing frame",
+            ));
+            p.push(Parameter::number(
+                &format!("groove{i}_axial_center"),
+                g.axial_center,
+                "m",
+                "groove centre, axial",
+            ));
+            p.push(Parameter::number(
+                &format!("groove{i}_circumferential_length"),
+                g.circumferential_length,
+                "m",
+                "groove length around",
+            ));
+            p.push(Parameter::number(
+                &format!("groove{i}_axial_width"),
+                g.axial_width,
+                "m",
+                "groove width along",
+            ));
+        }
+        p
+    }
+}
+
+/// Parsing context: the file, its text and the key locator.
+pub(crate) struct Ctx<'a> {
+    pub(crate) file: PathBuf,
+    pub(crate) text: &'a str,
+    pub(crate) locator: Locator<'a>,
+}
+
+impl<'a> Ctx<'a> {
+    pub(crate) fn new(text: &'a str, path: &Path) -> Self {
+        Self {
+            file: path.to_path_buf(),
+            text,
+            locator: Locator::new(text),
+        }
+    }
+
+    /// Deserialize the schema `T`, mapping toml's errors to [`CaseError`]s with the key named.
+    pub(crate) fn parse<T: serde::de::DeserializeOwned>(&self) -> Result<T, CaseError> {
+        if let Err(e) = toml::de::DeTable::parse(self.text) {
+            let (line, column) = e
+                .span()
+                .map_or((1, 1), |s| error::line_column(self.text, s.start));
+            let key = self
+                .text
+                .lines()
+                .nth(line - 1)
+                .map(|l| l.split('=').next().unwrap_or(l).trim().to_string())
+                .unwrap_or_default();
+            return Err(CaseError::Syntax {
+                file: self.file.clone(),
+                key,
+                line,
+                column,
+                message: e.message().trim().to_string(),
+            });
+        }
+        toml::from_str(self.text).map_err(|e| {
+            let message = e.message().trim().to_string();
+            let span = e.span();
+            let mut key = span
+                .as_ref()
+                .and_then(|s| self.locator.key_at(s))
+                .unwrap_or_default();
+            // "missing field `x`": the span is the enclosing table; name the missing key.
+            if let Some(missing) = message
+                .strip_prefix("missing field `")
+                .and_then(|m| m.split('`').next())
+            {
+                key = if key.is_empty() {
+                    missing.to_string()
+                } else {
+                    format!("{key}.{missing}")
+                };
+            }
+            // "unknown field `x`, expected …": the span is the key itself already.
+            let line = span.map_or_else(
+                || self.locator.line_of(&key),
+                |s| error::line_column(self.text, s.start).0,
+            );
+            CaseError::Key {
+                file: self.file.clone(),
+                line,
+                key: if key.is_empty() {
+                    "(top level)".into()
+                } else {
+                    key
+                },
+                message,
+            }
+        })
+    }
+
+    /// An error about `key` (dotted path).
+    pub(crate) fn err(&self, key: &str, message: impl Into<String>) -> CaseError {
+        CaseError::Key {
+            file: self.file.clone(),
+            line: self.locator.line_of(key),
+            key: key.to_string(),
+            message: message.into(),
+        }
+    }
+
+    /// A positive, finite number.
+    pub(crate) fn positive(&self, key: &str, v: f64) -> Result<f64, CaseError> {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.err(key, format!("must be a finite number > 0, got {v}")))
+        }
+    }
+
+    /// A finite number.
+    pub(crate) fn finite(&self, key: &str, v: f64) -> Result<f64, CaseError> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.err(key, format!("must be a finite number, got {v}")))
+        }
+    }
+
+    /// Path of a CSV file named by `key`, relative to the case file's directory.
+    pub(crate) fn relative(&self, rel: &str) -> PathBuf {
+        let dir = self.file.parent().unwrap_or(Path::new("."));
+        dir.join(rel)
+    }
+
+    /// Read a CSV table: the first column `crank_angle_deg`, then one column per `wanted`
+    /// (base name, quantity), each with a unit suffix. Returns the file's text and the columns
+    /// in SI (angles in degrees).
+    pub(crate) fn read_table(
+        &self,
+        key: &str,
+        rel: &str,
+        wanted: &[(&str, Quantity)],
+    ) -> Result<CsvTable, CaseError> {
+        let csv_path = self.relative(rel);
+        let csv_err = |csv_line: usize, message: String| CaseError::Csv {
+            csv: csv_path.clone(),
+            csv_line,
+            message,
+            file: self.file.clone(),
+            key: key.to_string(),
+            line: self.locator.line_of(key),
+        };
+        let text = std::fs::read_to_string(&csv_path).map_err(|e| {
+            self.err(
+                key,
+                format!("cannot read the CSV file '{}': {e}", csv_path.display()),
+            )
+        })?;
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+        let Some((hline, header)) = lines.next() else {
+            return Err(csv_err(1, "the CSV file is empty (no header row)".into()));
+        };
+        let headers: Vec<&str> = header.split(',').map(str::trim).collect();
+        if column_factor(headers[0], "crank_angle", Quantity::Angle) != Some(deg_to_rad(1.0)) {
+            return Err(csv_err(
+                hline + 1,
+                format!(
+                    "the first column must be 'crank_angle_deg', found '{}'",
+                    headers[0]
+                ),
+            ));
+        }
+        let mut index = Vec::new();
+        for (base, q) in wanted {
+            let found = headers
+                .iter()
+                .enumerate()
+                .skip(1)
+                .find_map(|(i, h)| column_factor(h, base, *q).map(|f| (i, f)));
+            match found {
+                Some(x) => index.push(x),
+                None => {
+                    return Err(csv_err(
+                        hline + 1,
+                        format!(
+                            "no column '{base}_<unit>' (unit one of: {}) among {:?}",
+                            q.unit_list(),
+                            headers
+                        ),
+                    ));
+                }
+            }
+        }
+        let mut angles = Vec::new();
+        let mut cols = vec![Vec::new(); wanted.len()];
+        for (i, line) in lines {
+            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+            if cells.len() != headers.len() {
+                return Err(csv_err(
+                    i + 1,
+                    format!(
+                        "row has {} cells, the header has {}",
+                        cells.len(),
+                        headers.len()
+                    ),
+                ));
+            }
+            let num = |c: usize| -> Result<f64, CaseError> {
+                match cells[c].parse::<f64>() {
+                    Ok(v) if v.is_finite() => Ok(v),
+                    _ => Err(csv_err(
+                        i + 1,
+                        format!(
+                            "column '{}': '{}' is not a finite number",
+                            headers[c], cells[c]
+                        ),
+                    )),
+                }
+            };
+            let a = num(0)?;
+            if let Some(&prev) = angles.last()
+                && a <= prev
+            {
+                return Err(csv_err(
+                    i + 1,
+                    format!("crank angle {a}° does not increase (previous row {prev}°)"),
+                ));
+            }
+            angles.push(a);
+            for (k, (c, f)) in index.iter().enumerate() {
+                cols[k].push(num(*c)? * f);
+            }
+        }
+        if angles.is_empty() {
+            return Err(csv_err(
+                hline + 1,
+                "the table has a header but no rows".into(),
+            ));
+        }
+        Ok((text, angles, cols))
+    }
+}
+
+/// A CSV table as read: the file's text, the crank angles (deg) and the wanted columns (SI).
+pub(crate) type CsvTable = (String, Vec<f64>, Vec<Vec<f64>>);
+
+/// Check an inline table's angles: finite, increasing, non-empty, lengths match.
+fn check_inline(
+    ctx: &Ctx<'_>,
+    angle_key: &str,
+    angles: &[f64],
+    columns: &[(&str, &[f64])],
+) -> Result<(), CaseError> {
+    if angles.is_empty() {
+        return Err(ctx.err(angle_key, "the table is empty: give at least one point"));
+    }
+    for (i, a) in angles.iter().enumerate() {
+        if !a.is_finite() {
+            return Err(ctx.err(angle_key, format!("entry {i} is {a}, not a finite number")));
+        }
+        if i > 0 && *a <= angles[i - 1] {
+            return Err(ctx.err(
+                angle_key,
+                format!(
+                    "entry {i} ({a}°) does not increase (previous {}°)",
+                    angles[i - 1]
+                ),
+            ));
+        }
+    }
+    for (key, col) in columns {
+        if col.len() != angles.len() {
+            return Err(ctx.err(
+                key,
+                format!(
+                    "has {} entries, {angle_key} has {}",
+                    col.len(),
+                    angles.len()
+                ),
+            ));
+        }
+        if let Some((i, v)) = col.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(ctx.err(key, format!("entry {i} is {v}, not a finite number")));
+        }
+    }
+    Ok(())
+}
+
+fn schedule(
+    ctx: &Ctx<'_>,
+    inputs: &mut Vec<InputFile>,
+    section: &str,
+    constant: Option<(&str, f64)>,
+    file: Option<&str>,
+    inline: Option<(&[f64], &str, &[f64])>,
+    column: (&str, Quantity),
+) -> Result<Option<Schedule>, CaseError> {
+    let given = constant.is_some() as u8 + file.is_some() as u8 + inline.is_some() as u8;
+    if given > 1 {
+        return Err(ctx.err(
+            section,
+            "give only one of: a constant, `file`, or an inline table",
+        ));
+    }
+    if let Some((key, v)) = constant {
+        return Ok(Some(Schedule::Constant(
+            ctx.finite(&format!("{section}.{key}"), v)?,
+        )));
+    }
+    if let Some(rel) = file {
+        let key = format!("{section}.file");
+        let (text, angles, cols) = ctx.read_table(&key, rel, &[column])?;
+        inputs.push(InputFile {
+            path: rel.to_string(),
+            text,
+        });
+        return Ok(Some(Schedule::Table {
+            angles_deg: angles,
+            values: cols.into_iter().next().unwrap_or_default(),
+        }));
+    }
+    if let Some((angles, key, values)) = inline {
+        let akey = format!("{section}.crank_angle_deg");
+        let vkey = format!("{section}.{key}");
+        check_inline(ctx, &akey, angles, &[(&vkey, values)])?;
+        return Ok(Some(Schedule::Table {
+            angles_deg: angles.to_vec(),
+            values: values.to_vec(),
+        }));
+    }
+    Ok(None)
+}
+
+fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
+    if raw.version != 1 {
+        return Err(ctx.err(
+            "version",
+            format!(
+                "this jbearing reads case files of version 1, not {}",
+                raw.version
+            ),
+        ));
+    }
+    let name = match &raw.name {
+        Some(n) => n.clone(),
+        None => ctx
+            .file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "case".into()),
+    };
+    if name.is_empty()
+        || name.starts_with('.')
+        || !name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c))
+    {
+        return Err(ctx.err(
+            "name",
+            format!("'{name}' is not usable as a file name (letters, digits, '_', '-', '.')"),
+        ));
+    }
+    let b = &raw.bearing;
+    let radius = ctx.positive("bearing.radius_m", b.radius_m)?;
+    let length = ctx.positive("bearing.length_m", b.length_m)?;
+    let radial_clearance = ctx.positive("bearing.radial_clearance_m", b.radial_clearance_m)?;
+    if radial_clearance >= 0.1 * radius {
+        return Err(ctx.err(
+            "bearing.radial_clearance_m",
+            format!(
+                "{radial_clearance} m is not small against the radius {radius} m (c/R must be < 0.1; \
+                 is it in µm?)"
+            ),
+        ));
+    }
+    let mut grooves = Vec::new();
+    for (i, g) in raw.grooves.iter().enumerate() {
+        let k = |s: &str| format!("grooves[{i}].{s}");
+        let center = ctx.finite(&k("center_angle_deg"), g.center_angle_deg)?;
+        let axial = ctx.finite(&k("axial_center_m"), g.axial_center_m)?;
+        let circ = ctx.positive(&k("circumferential_length_m"), g.circumferential_length_m)?;
+        let width = ctx.positive(&k("axial_width_m"), g.axial_width_m)?;
+        if circ >= std::f64::consts::TAU * radius {
+            return Err(ctx.err(
+                &k("circumferential_length_m"),
+                format!(
+                    "{circ} m is longer than the bearing's circumference 2πR = {:.6} m",
+                    std::f64::consts::TAU * radius
+                ),
+            ));
+        }
+        if axial.abs() + 0.5 * width > 0.5 * length + 1e-12 * length {
+            return Err(ctx.err(
+                &k("axial_width_m"),
+                format!(
+                    "the groove (centre {axial} m, width {width} m) reaches outside the bearing \
+                     (z from {} to {} m)",
+                    -0.5 * length,
+                    0.5 * length
+                ),
+            ));
+        }
+        grooves.push(Groove {
+            center_angle: deg_to_rad(center),
+            axial_center: axial,
+            circumferential_length: circ,
+            axial_width: width,
+        });
+    }
+
+    let l = &raw.lubricant;
+    let viscosity = ctx.positive("lubricant.viscosity_pa_s", l.viscosity_pa_s)?;
+    let bulk_modulus = ctx.positive("lubricant.bulk_modulus_pa", l.bulk_modulus_pa)?;
+    let cavitation_pressure =
+        ctx.finite("lubricant.cavitation_pressure_pa", l.cavitation_pressure_pa)?;
+    let ambient_pressure = ctx.finite("lubricant.ambient_pressure_pa", l.ambient_pressure_pa)?;
+    if cavitation_pressure > ambient_pressure {
+        return Err(ctx.err(
+            "lubricant.cavitation_pressure_pa",
+            format!("{cavitation_pressure} Pa is above the ambient pressure {ambient_pressure} Pa"),
+        ));
+    }
+    let starved_film_fraction = l.starved_film_fraction;
+    if !(starved_film_fraction > 0.0 && starved_film_fraction <= 1.0) {
+        return Err(ctx.err(
+            "lubricant.starved_film_fraction",
+            format!("must lie in (0, 1], got {starved_film_fraction}"),
+        ));
+    }
+
+    let o = &raw.operation;
+    let cycle_deg = ctx.positive("operation.cycle_deg", o.cycle_deg)?;
+    let crank_speed = rpm_to_rad_s(ctx.positive("operation.crank_speed_rpm", o.crank_speed_rpm)?);
+    let mut input_files = Vec::new();
+    let journal_speed = if let Some(rel) = &o.speed_file {
+        if o.journal_speed_rpm.is_some() || o.bearing_speed_rpm.is_some() {
+            return Err(ctx.err(
+                "operation.speed_file",
+                "give either speed_file or journal_speed_rpm / bearing_speed_rpm, not both",
+            ));
+        }
+        None.or(Some(rel.clone()))
+    } else {
+        None
+    };
+    let (journal_speed, bearing_speed) = match journal_speed {
+        Some(rel) => {
+            let (text, angles, cols) = ctx.read_table(
+                "operation.speed_file",
+                &rel,
+                &[
+                    ("journal_speed", Quantity::Speed),
+                    ("bearing_speed", Quantity::Speed),
+                ],
+            )?;
+            input_files.push(InputFile { path: rel, text });
+            (
+                Schedule::Table {
+                    angles_deg: angles.clone(),
+                    values: cols[0].clone(),
+                },
+                Schedule::Table {
+                    angles_deg: angles,
+                    values: cols[1].clone(),
+                },
+            )
+        }
+        None => (
+            Schedule::Constant(rpm_to_rad_s(ctx.finite(
+                "operation.journal_speed_rpm",
+                o.journal_speed_rpm.unwrap_or(o.crank_speed_rpm),
+            )?)),
+            Schedule::Constant(rpm_to_rad_s(ctx.finite(
+                "operation.bearing_speed_rpm",
+                o.bearing_speed_rpm.unwrap_or(0.0),
+            )?)),
+        ),
+    };
+
+    // Load.
+    let ld = &raw.load;
+    let interp = match ld.interpolation.as_str() {
+        "linear" => LoadInterpolation::Linear,
+        "catmull_rom" => LoadInterpolation::CatmullRom,
+        other => {
+            return Err(ctx.err(
+                "load.interpolation",
+                format!("'{other}' is not one of: linear, catmull_rom"),
+            ));
+        }
+    };
+    let direction = match ld.direction {
+        Some(d) => {
+            let n = d[0].hypot(d[1]);
+            if !(n.is_finite() && n > 0.0) {
+                return Err(ctx.err(
+                    "load.direction",
+                    format!("{d:?} is not a usable direction (zero or not finite)"),
+                ));
+            }
+            Some([d[0] / n, d[1] / n])
+        }
+        None => None,
+    };
+    let (load_angles_deg, load_forces): (Vec<f64>, Vec<[f64; 2]>) =
+        match (&ld.file, &ld.crank_angle_deg) {
+            (Some(_), Some(_)) => {
+                return Err(ctx.err(
+                    "load",
+                    "give either `file` or the inline table `crank_angle_deg`, not both",
+                ));
+            }
+            (None, None) => {
+                return Err(ctx.err(
+                    "load",
+                    "no load: give `file = \"table.csv\"` or the inline `crank_angle_deg` with \
+                 `x_n`, `y_n` (or `magnitude_n` and `direction`)",
+                ));
+            }
+            (Some(rel), None) => {
+                let (text, angles, forces) = if let Some(d) = direction {
+                    let (text, a, cols) =
+                        ctx.read_table("load.file", rel, &[("load", Quantity::Force)])?;
+                    let f = cols[0].iter().map(|m| [m * d[0], m * d[1]]).collect();
+                    (text, a, f)
+                } else {
+                    let (text, a, cols) = ctx.read_table(
+                        "load.file",
+                        rel,
+                        &[("load_x", Quantity::Force), ("load_y", Quantity::Force)],
+                    )?;
+                    let f = cols[0]
+                        .iter()
+                        .zip(&cols[1])
+                        .map(|(x, y)| [*x, *y])
+                        .collect();
+                    (text, a, f)
+                };
+                input_files.push(InputFile {
+                    path: rel.clone(),
+                    text,
+                });
+                (angles, forces)
+            }
+            (None, Some(angles)) => {
+                let akey = "load.crank_angle_deg";
+                if let Some(d) = direction {
+                    let Some(m) = &ld.magnitude_n else {
+                        return Err(ctx.err(
+                            "load.magnitude_n",
+                            "missing: a load with `direction` needs `magnitude_n`",
+                        ));
+                    };
+                    check_inline(ctx, akey, angles, &[("load.magnitude_n", m)])?;
+                    (
+                        angles.clone(),
+                        m.iter().map(|v| [v * d[0], v * d[1]]).collect(),
+                    )
+                } else {
+                    let (Some(x), Some(y)) = (&ld.x_n, &ld.y_n) else {
+                        return Err(ctx.err(
+                            if ld.x_n.is_none() {
+                                "load.x_n"
+                            } else {
+                                "load.y_n"
+                            },
+                            "missing: an inline load needs both `x_n` and `y_n` (or `magnitude_n` \
+                         with `direction`)",
+                        ));
+                    };
+                    check_inline(ctx, akey, angles, &[("load.x_n", x), ("load.y_n", y)])?;
+                    (
+                        angles.clone(),
+                        x.iter().zip(y).map(|(a, b)| [*a, *b]).collect(),
+                    )
+                }
+            }
+        };
+    let (load_angles_deg, load_forces) = if load_angles_deg.len() == 1 {
+        // A constant load: the solvers' tables need two points.
+        (
+            vec![load_angles_deg[0], load_angles_deg[0] + 0.5 * cycle_deg],
+            vec![load_forces[0], load_forces[0]],
+        )
+    } else {
+        (load_angles_deg, load_forces)
+    };
+    let load_key = if ld.file.is_some() {
+        "load.file"
+    } else {
+        "load.crank_angle_deg"
+    };
+    if load_forces.iter().all(|f| f[0] == 0.0 && f[1] == 0.0) {
+        return Err(ctx.err(load_key, "the load is zero throughout the cycle"));
+    }
+    TabulatedLoad::new(
+        load_angles_deg.clone(),
+        load_forces.clone(),
+        cycle_deg,
+        crank_speed,
+        interp,
+    )
+    .map_err(|e| ctx.err(load_key, e.to_string()))?;
+
+    // Feed.
+    let f = &raw.feed;
+    let feed_pressure = schedule(
+        ctx,
+        &mut input_files,
+        "feed",
+        f.pressure_pa.map(|v| ("pressure_pa", v)),
+        f.file.as_deref(),
+        match (&f.crank_angle_deg, &f.pressure_history_pa) {
+            (Some(a), Some(v)) => Some((a.as_slice(), "pressure_history_pa", v.as_slice())),
+            (Some(_), None) => {
+                return Err(ctx.err(
+                    "feed.pressure_history_pa",
+                    "missing: an inline feed table needs `pressure_history_pa`",
+                ));
+            }
+            (None, Some(_)) => {
+                return Err(ctx.err(
+                    "feed.crank_angle_deg",
+                    "missing: an inline feed table needs `crank_angle_deg`",
+                ));
+            }
+            (None, None) => None,
+        },
+        ("feed_pressure", Quantity::Pressure),
+    )?
+    .unwrap_or(Schedule::Constant(ambient_pressure));
+    if grooves.is_empty()
+        && !matches!(feed_pressure, Schedule::Constant(p) if p == ambient_pressure)
+    {
+        return Err(ctx.err(
+            "feed",
+            "a feed pressure is given but the bearing has no [[grooves]] to feed",
+        ));
+    }
+
+    // Grid.
+    let g = &raw.grid;
+    if g.n_theta < 8 {
+        return Err(ctx.err(
+            "grid.n_theta",
+            format!("{} nodes around is too few (at least 8)", g.n_theta),
+        ));
+    }
+    if g.n_z < 3 {
+        return Err(ctx.err(
+            "grid.n_z",
+            format!(
+                "{} nodes along is too few (at least 3, the ends included)",
+                g.n_z
+            ),
+        ));
+    }
+    let dtheta = std::f64::consts::TAU / g.n_theta as f64;
+    let dz = length / (g.n_z - 1) as f64;
+    for (i, gr) in grooves.iter().enumerate() {
+        let arc = gr.circumferential_length / radius;
+        if arc < dtheta {
+            return Err(ctx.err(
+                "grid.n_theta",
+                format!(
+                    "n_theta = {} gives a node spacing of {:.2}°, wider than groove {i} \
+                     ({:.2}° around): the groove would have no nodes; use n_theta ≥ {}",
+                    g.n_theta,
+                    dtheta.to_degrees(),
+                    arc.to_degrees(),
+                    (std::f64::consts::TAU / arc).ceil() as usize
+                ),
+            ));
+        }
+        if gr.axial_width < dz {
+            return Err(ctx.err(
+                "grid.n_z",
+                format!(
+                    "n_z = {} gives an axial spacing of {:.3} mm, wider than groove {i} ({:.3} mm \
+                     wide): the groove would have no nodes; use n_z ≥ {}",
+                    g.n_z,
+                    dz * 1e3,
+                    gr.axial_width * 1e3,
+                    (length / gr.axial_width).ceil() as usize + 1
+                ),
+            ));
+        }
+    }
+
+    // Solver and output.
+    let s = &raw.solver;
+    if s.time_steps_per_cycle < 8 {
+        return Err(ctx.err(
+            "solver.time_steps_per_cycle",
+            format!("{} is too few (at least 8)", s.time_steps_per_cycle),
+        ));
+    }
+    if s.max_cycles < 1 {
+        return Err(ctx.err("solver.max_cycles", "must be at least 1"));
+    }
+    let periodicity_tolerance =
+        ctx.positive("solver.periodicity_tolerance", s.periodicity_tolerance)?;
+    let force_tolerance = ctx.positive("solver.force_tolerance", s.force_tolerance)?;
+    if !(s.eccentricity_limit > 0.0 && s.eccentricity_limit < 1.0) {
+        return Err(ctx.err(
+            "solver.eccentricity_limit",
+            format!("must lie in (0, 1), got {}", s.eccentricity_limit),
+        ));
+    }
+    let e0 = s.initial_eccentricity[0].hypot(s.initial_eccentricity[1]);
+    if !(e0.is_finite() && e0 < s.eccentricity_limit) {
+        return Err(ctx.err(
+            "solver.initial_eccentricity",
+            format!("|ε| = {e0} must be finite and below the eccentricity limit"),
+        ));
+    }
+    let mobility_model = match s.mobility_model.as_str() {
+        "booker" => MobilityModelChoice::Booker,
+        "exact_short" => MobilityModelChoice::ExactShort,
+        "map" => MobilityModelChoice::Map,
+        other => {
+            return Err(ctx.err(
+                "solver.mobility_model",
+                format!("'{other}' is not one of: booker, exact_short, map"),
+            ));
+        }
+    };
+    let rigorous_film = match s.rigorous_film.as_str() {
+        "reynolds" => RigorousFilm::Reynolds,
+        "short_bearing" => RigorousFilm::ShortBearing,
+        other => {
+            return Err(ctx.err(
+                "solver.rigorous_film",
+                format!("'{other}' is not one of: reynolds, short_bearing"),
+            ));
+        }
+    };
+    let out = &raw.output;
+    if out.samples_per_cycle < 8 {
+        return Err(ctx.err(
+            "output.samples_per_cycle",
+            format!("{} is too few (at least 8)", out.samples_per_cycle),
+        ));
+    }
+    let m = &raw.methods;
+    if !(m.mobility || m.rigorous || m.closed_form) {
+        return Err(ctx.err(
+            "methods",
+            "every method is switched off: nothing to compute",
+        ));
+    }
+
+    Ok(Case {
+        name,
+        description: raw.description.clone().unwrap_or_default(),
+        path: Some(ctx.file.clone()),
+        text: ctx.text.to_string(),
+        input_files,
+        radius,
+        length,
+        radial_clearance,
+        grooves,
+        viscosity,
+        bulk_modulus,
+        cavitation_pressure,
+        ambient_pressure,
+        starved_film_fraction,
+        cycle_deg,
+        crank_speed,
+        journal_speed,
+        bearing_speed,
+        load_angles_deg,
+        load_forces,
+        load_interpolation: interp,
+        feed_pressure,
+        n_theta: g.n_theta,
+        n_z: g.n_z,
+        solver: SolverOptions {
+            time_steps_per_cycle: s.time_steps_per_cycle,
+            max_cycles: s.max_cycles,
+            periodicity_tolerance,
+            force_tolerance,
+            eccentricity_limit: s.eccentricity_limit,
+            crank_nicolson: s.crank_nicolson,
+            mobility_model,
+            initial_eccentricity: s.initial_eccentricity,
+            rigorous_film,
+        },
+        output: OutputOptions {
+            samples_per_cycle: out.samples_per_cycle,
+            field_snapshots: out.field_snapshots,
+            plots: out.plots,
+        },
+        methods: Methods {
+            mobility: m.mobility,
+            rigorous: m.rigorous,
+            closed_form: m.closed_form,
+        },
+    })
+}

@@ -1,0 +1,265 @@
+//! The case file as written: serde structs, one per TOML table, unknown keys rejected.
+//! `cases/README.md` documents every key; defaults are the functions at the bottom.
+
+use serde::Deserialize;
+
+/// The whole file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    /// Format version; this program reads 1.
+    pub version: i64,
+    /// Case name (default: the file's stem).
+    pub name: Option<String>,
+    /// One line of description.
+    pub description: Option<String>,
+    /// The bearing.
+    pub bearing: BearingSection,
+    /// Feed grooves, `[[grooves]]`.
+    #[serde(default)]
+    pub grooves: Vec<GrooveSection>,
+    /// The lubricant.
+    pub lubricant: LubricantSection,
+    /// Cycle and speeds.
+    pub operation: OperationSection,
+    /// Load history.
+    pub load: LoadSection,
+    /// Feed pressure history.
+    #[serde(default)]
+    pub feed: FeedSection,
+    /// Grid.
+    #[serde(default)]
+    pub grid: GridSection,
+    /// Solver settings.
+    #[serde(default)]
+    pub solver: SolverSection,
+    /// Output settings.
+    #[serde(default)]
+    pub output: OutputSection,
+    /// What to compute.
+    #[serde(default)]
+    pub methods: MethodsSection,
+}
+
+/// `[bearing]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BearingSection {
+    pub radius_m: f64,
+    pub length_m: f64,
+    pub radial_clearance_m: f64,
+}
+
+/// `[[grooves]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GrooveSection {
+    pub center_angle_deg: f64,
+    #[serde(default)]
+    pub axial_center_m: f64,
+    pub circumferential_length_m: f64,
+    pub axial_width_m: f64,
+}
+
+/// `[lubricant]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LubricantSection {
+    pub viscosity_pa_s: f64,
+    #[serde(default = "default_bulk_modulus")]
+    pub bulk_modulus_pa: f64,
+    #[serde(default)]
+    pub cavitation_pressure_pa: f64,
+    #[serde(default)]
+    pub ambient_pressure_pa: f64,
+    #[serde(default = "default_starved_film_fraction")]
+    pub starved_film_fraction: f64,
+}
+
+/// `[operation]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OperationSection {
+    pub cycle_deg: f64,
+    pub crank_speed_rpm: f64,
+    pub journal_speed_rpm: Option<f64>,
+    pub bearing_speed_rpm: Option<f64>,
+    pub speed_file: Option<String>,
+}
+
+/// `[load]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSection {
+    pub file: Option<String>,
+    pub crank_angle_deg: Option<Vec<f64>>,
+    pub x_n: Option<Vec<f64>>,
+    pub y_n: Option<Vec<f64>>,
+    pub magnitude_n: Option<Vec<f64>>,
+    pub direction: Option<[f64; 2]>,
+    #[serde(default = "default_interpolation")]
+    pub interpolation: String,
+}
+
+/// `[feed]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FeedSection {
+    pub pressure_pa: Option<f64>,
+    pub file: Option<String>,
+    pub crank_angle_deg: Option<Vec<f64>>,
+    pub pressure_history_pa: Option<Vec<f64>>,
+}
+
+/// `[grid]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridSection {
+    #[serde(default = "default_n_theta")]
+    pub n_theta: usize,
+    #[serde(default = "default_n_z")]
+    pub n_z: usize,
+}
+
+impl Default for GridSection {
+    fn default() -> Self {
+        Self {
+            n_theta: default_n_theta(),
+            n_z: default_n_z(),
+        }
+    }
+}
+
+/// `[solver]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSection {
+    #[serde(default = "default_time_steps")]
+    pub time_steps_per_cycle: usize,
+    #[serde(default = "default_max_cycles")]
+    pub max_cycles: usize,
+    #[serde(default = "default_periodicity")]
+    pub periodicity_tolerance: f64,
+    #[serde(default = "default_force_tolerance")]
+    pub force_tolerance: f64,
+    #[serde(default = "default_eccentricity_limit")]
+    pub eccentricity_limit: f64,
+    #[serde(default = "default_true")]
+    pub crank_nicolson: bool,
+    #[serde(default = "default_mobility_model")]
+    pub mobility_model: String,
+    #[serde(default)]
+    pub initial_eccentricity: [f64; 2],
+    #[serde(default = "default_rigorous_film")]
+    pub rigorous_film: String,
+}
+
+impl Default for SolverSection {
+    fn default() -> Self {
+        Self {
+            time_steps_per_cycle: default_time_steps(),
+            max_cycles: default_max_cycles(),
+            periodicity_tolerance: default_periodicity(),
+            force_tolerance: default_force_tolerance(),
+            eccentricity_limit: default_eccentricity_limit(),
+            crank_nicolson: true,
+            mobility_model: default_mobility_model(),
+            initial_eccentricity: [0.0, 0.0],
+            rigorous_film: default_rigorous_film(),
+        }
+    }
+}
+
+/// `[output]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSection {
+    #[serde(default = "default_samples")]
+    pub samples_per_cycle: usize,
+    #[serde(default = "default_snapshots")]
+    pub field_snapshots: usize,
+    #[serde(default = "default_true")]
+    pub plots: bool,
+}
+
+impl Default for OutputSection {
+    fn default() -> Self {
+        Self {
+            samples_per_cycle: default_samples(),
+            field_snapshots: default_snapshots(),
+            plots: true,
+        }
+    }
+}
+
+/// `[methods]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MethodsSection {
+    #[serde(default = "default_true")]
+    pub mobility: bool,
+    #[serde(default = "default_true")]
+    pub rigorous: bool,
+    #[serde(default)]
+    pub closed_form: bool,
+}
+
+impl Default for MethodsSection {
+    fn default() -> Self {
+        Self {
+            mobility: true,
+            rigorous: true,
+            closed_form: false,
+        }
+    }
+}
+
+/// Mineral oil, ~1.5 GPa (design.md §2: order 1–2 GPa).
+fn default_bulk_modulus() -> f64 {
+    1.5e9
+}
+/// Yu & Sawicki's cut-off groove film fraction (seed 002, Fig. 4: φ = 0.01).
+fn default_starved_film_fraction() -> f64 {
+    0.01
+}
+fn default_interpolation() -> String {
+    "linear".into()
+}
+/// 2° spacing: resolves a 25 mm groove on a 27 mm radius (52°) with 26 nodes.
+fn default_n_theta() -> usize {
+    180
+}
+fn default_n_z() -> usize {
+    21
+}
+/// 1° of crank angle per step at a 360° cycle.
+fn default_time_steps() -> usize {
+    360
+}
+fn default_max_cycles() -> usize {
+    20
+}
+fn default_periodicity() -> f64 {
+    1e-4
+}
+fn default_force_tolerance() -> f64 {
+    1e-6
+}
+fn default_eccentricity_limit() -> f64 {
+    0.98
+}
+fn default_mobility_model() -> String {
+    "booker".into()
+}
+fn default_rigorous_film() -> String {
+    "reynolds".into()
+}
+fn default_samples() -> usize {
+    360
+}
+fn default_snapshots() -> usize {
+    36
+}
+fn default_true() -> bool {
+    true
+}

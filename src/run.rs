@@ -1,0 +1,803 @@
+//! One case: solve it with each method the case asks for and gather a [`CaseReport`].
+//!
+//! ```text
+//!   Case ──► run_mobility ─────► MethodResult (Mobility)  ─┐
+//!        └─► run_rigorous ─────► MethodResult (Rigorous)  ─┼─► CaseReport ──► standard_writers()
+//!            (one function: the rigorous inverse solver    │
+//!             slots in here when it is on main)           ─┘   summary rows from both
+//! ```
+//!
+//! Conventions are design.md §1's: the case's load is the force on the journal in the bearing
+//! frame; the reported orbit is the journal centre in that frame (m).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use jbearing_solvers::mobility::{
+    BookerShortBearing, ExactShortBearing, MobilityError, MobilityMap, MobilityMapParams,
+    MobilityModel, MobilityParams, OrbitInfo, OrbitParams, PeriodicLoad, ShortBearingSqueeze,
+    solve_orbit,
+};
+
+use jbearing_solvers::inverse::{
+    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution,
+    ShortBearingFilm, ShortBearingParams, TimeScheme, solve_inverse,
+};
+use jbearing_solvers::load::LoadHistory;
+use ndarray::Array3;
+
+use crate::case::{Case, CaseError, MobilityModelChoice, RigorousFilm};
+use crate::output::{
+    CaseReport, Field, FieldSnapshots, Method, MethodResult, OutputError, Parameter,
+    ParameterValue, Reduction, RunInfo, Series, SummaryRow, names, standard_writers,
+};
+
+/// Progress of one case, for progress bars and logs. Every method has a default that does
+/// nothing, so an observer implements only what it shows.
+pub trait RunObserver: Sync {
+    /// A method starts on the case.
+    fn method_started(&self, _case: &str, _method: Method) {}
+    /// A cycle of a method ended, with its periodicity change (or solver residual).
+    fn cycle_done(&self, _case: &str, _method: Method, _cycle: usize, _residual: f64) {}
+    /// Within a cycle (cycle 0 = run-in): step of steps, with the step's residual.
+    fn progress(
+        &self,
+        _case: &str,
+        _method: Method,
+        _cycle: usize,
+        _step: usize,
+        _steps: usize,
+        _residual: f64,
+    ) {
+    }
+    /// A method finished.
+    fn method_done(&self, _case: &str, _method: Method) {}
+}
+
+/// An observer that ignores everything.
+pub struct Quiet;
+impl RunObserver for Quiet {}
+
+/// Why a case could not be run.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// The case file is bad.
+    #[error(transparent)]
+    Case(#[from] CaseError),
+    /// The mobility method failed.
+    #[error("case '{case}': mobility method: {source}")]
+    Mobility {
+        /// Case name.
+        case: String,
+        /// The solver's error.
+        #[source]
+        source: MobilityError,
+    },
+    /// The mobility map could not be built.
+    #[error("case '{case}': mobility map: {message}")]
+    MobilityMap {
+        /// Case name.
+        case: String,
+        /// What failed.
+        message: String,
+    },
+    /// The rigorous (inverse) method failed.
+    #[error("case '{case}': rigorous method: {message}")]
+    Rigorous {
+        /// Case name.
+        case: String,
+        /// The solver's error.
+        message: String,
+    },
+    /// Writing the results failed.
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    /// The output directory could not be made.
+    #[error("creating output directory '{}': {source}", path.display())]
+    OutputDir {
+        /// The directory.
+        path: PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+/// What one case produced.
+#[derive(Debug, Clone)]
+pub struct CaseOutcome {
+    /// The report (written already).
+    pub report: CaseReport,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// The rigorous inverse solution of the case, or `None` while its film is not part of this
+/// build. This is the one place the rigorous method enters the application:
+///
+/// ```text
+///   Case ──► CaseHistory (LoadHistory: load, ω_j(t), ω_b(t), p_feed(t) per groove)
+///        ──► film: Reynolds (JFO)            [when the reynolds solver is on main]
+///                  | ShortBearingFilm        [solver.rigorous_film = "short_bearing"]
+///        ──► solve_inverse(InverseParams from [solver]) ──► inverse_result ──► MethodResult
+/// ```
+pub fn run_rigorous(
+    case: &Case,
+    observer: &dyn RunObserver,
+) -> Result<Option<MethodResult>, RunError> {
+    let params = inverse_params(case);
+    let history = CaseHistory::new(case);
+    let mut adapter = InverseAdapter {
+        case: &case.name,
+        observer,
+    };
+    match case.solver.rigorous_film {
+        RigorousFilm::Reynolds => Ok(None),
+        RigorousFilm::ShortBearing => {
+            observer.method_started(&case.name, Method::Rigorous);
+            let mut film = ShortBearingFilm::new(ShortBearingParams {
+                radius: case.radius,
+                length: case.length,
+                radial_clearance: case.radial_clearance,
+                viscosity: case.viscosity,
+                scheme: if case.solver.crank_nicolson {
+                    TimeScheme::CrankNicolson
+                } else {
+                    TimeScheme::BackwardEuler
+                },
+            })
+            .map_err(|e| RunError::Rigorous {
+                case: case.name.clone(),
+                message: e.to_string(),
+            })?;
+            let solution =
+                solve_inverse(&params, &history, &mut film, &mut adapter).map_err(|e| {
+                    RunError::Rigorous {
+                        case: case.name.clone(),
+                        message: e.to_string(),
+                    }
+                })?;
+            observer.method_done(&case.name, Method::Rigorous);
+            Ok(Some(inverse_result(
+                case,
+                &solution,
+                "inverse solver with the analytic short-bearing film (Gumbel half film, moving \
+                 journal) - NOT the mass-conserving Reynolds film",
+            )))
+        }
+    }
+}
+
+/// Why the rigorous method is absent from a report (the note written into the file).
+pub const RIGOROUS_MISSING: &str = "the mass-conserving Reynolds (JFO) film is not part of this \
+     build yet: this report holds the mobility method only (the inverse solver is wired; \
+     solver.rigorous_film = \"short_bearing\" runs it with the analytic short-bearing film)";
+
+/// The inverse solver's settings from the case's `[solver]` and `[output]` tables.
+pub fn inverse_params(case: &Case) -> InverseParams {
+    let s = &case.solver;
+    let steps = s.time_steps_per_cycle.max(4);
+    InverseParams {
+        step_deg: case.cycle_deg / steps as f64,
+        tolerance: s.force_tolerance.max(1e-10),
+        max_cycles: s.max_cycles,
+        periodicity_tolerance: s.periodicity_tolerance,
+        collapse_eccentricity: s.eccentricity_limit,
+        field_stride: steps
+            .checked_div(case.output.field_snapshots)
+            .map_or(0, |k| k.max(1)),
+        ..InverseParams::default()
+    }
+}
+
+/// The case's histories as the inverse solver's [`LoadHistory`].
+pub struct CaseHistory<'a> {
+    case: &'a Case,
+    load: jbearing_solvers::mobility::TabulatedLoad,
+}
+
+impl<'a> CaseHistory<'a> {
+    /// Histories of `case`.
+    pub fn new(case: &'a Case) -> Self {
+        Self {
+            case,
+            load: case.load(),
+        }
+    }
+    fn angle(&self, t: f64) -> f64 {
+        (t * self.case.crank_speed).to_degrees()
+    }
+}
+
+impl LoadHistory for CaseHistory<'_> {
+    fn period(&self) -> f64 {
+        self.case.period()
+    }
+    fn load(&self, t: f64) -> [f64; 2] {
+        self.load.load_at_crank_angle(self.angle(t))
+    }
+    fn journal_speed(&self, t: f64) -> f64 {
+        self.case
+            .journal_speed
+            .at(self.angle(t), self.case.cycle_deg)
+    }
+    fn bearing_speed(&self, t: f64) -> f64 {
+        self.case
+            .bearing_speed
+            .at(self.angle(t), self.case.cycle_deg)
+    }
+    fn feed_pressures(&self, t: f64) -> Vec<f64> {
+        let p = self
+            .case
+            .feed_pressure
+            .at(self.angle(t), self.case.cycle_deg);
+        vec![p; self.case.grooves.len()]
+    }
+    fn crank_angle_deg(&self, t: f64) -> f64 {
+        self.angle(t)
+    }
+    fn cycle_deg(&self) -> f64 {
+        self.case.cycle_deg
+    }
+}
+
+/// Passes the inverse solver's progress on to a [`RunObserver`].
+struct InverseAdapter<'a> {
+    case: &'a str,
+    observer: &'a dyn RunObserver,
+}
+
+impl InverseObserver for InverseAdapter<'_> {
+    fn on_step(&mut self, p: &InverseProgress) {
+        if p.step.is_multiple_of(10) || p.step == p.steps {
+            let cycle = match p.phase {
+                InversePhase::RunIn => 0,
+                InversePhase::Cycle(k) => k,
+            };
+            self.observer.progress(
+                self.case,
+                Method::Rigorous,
+                cycle,
+                p.step,
+                p.steps,
+                p.residual,
+            );
+        }
+    }
+    fn on_cycle(&mut self, cycle: usize, eccentricity_change: f64, _film: f64) {
+        self.observer
+            .cycle_done(self.case, Method::Rigorous, cycle, eccentricity_change);
+    }
+}
+
+/// The inverse solution as the report's rigorous [`MethodResult`].
+pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> MethodResult {
+    let c = case.radial_clearance;
+    let st = &sol.steps;
+    let col = |f: &dyn Fn(&jbearing_solvers::inverse::InverseStep) -> f64| {
+        st.iter().map(f).collect::<Vec<f64>>()
+    };
+    let mut series = vec![
+        Series::new(
+            names::LOAD_X,
+            "load on the journal, x",
+            "N",
+            col(&|s| s.load[0]),
+        ),
+        Series::new(
+            names::LOAD_Y,
+            "load on the journal, y",
+            "N",
+            col(&|s| s.load[1]),
+        ),
+        Series::new(
+            names::FEED_PRESSURE,
+            "feed pressure",
+            "Pa",
+            col(&|s| case.feed_pressure.at(s.crank_angle_deg, case.cycle_deg)),
+        ),
+        Series::new(
+            names::ECCENTRICITY_X,
+            "journal centre, x",
+            "m",
+            col(&|s| c * s.eccentricity_ratio[0]),
+        ),
+        Series::new(
+            names::ECCENTRICITY_Y,
+            "journal centre, y",
+            "m",
+            col(&|s| c * s.eccentricity_ratio[1]),
+        ),
+        Series::new(
+            names::ECCENTRICITY_RATIO,
+            "eccentricity ratio",
+            "1",
+            col(&|s| s.eccentricity_ratio[0].hypot(s.eccentricity_ratio[1])),
+        ),
+        Series::new(
+            names::ATTITUDE_ANGLE,
+            "attitude angle of the journal centre",
+            "rad",
+            col(&|s| s.attitude_angle),
+        ),
+        Series::new(
+            names::MIN_FILM_THICKNESS,
+            "minimum film thickness",
+            "m",
+            col(&|s| s.min_film_thickness),
+        ),
+        Series::new(
+            names::MAX_PRESSURE,
+            "peak film pressure",
+            "Pa",
+            col(&|s| s.max_pressure),
+        ),
+        Series::new(
+            names::CAVITATED_FRACTION,
+            "cavitated fraction of the film area",
+            "1",
+            col(&|s| s.cavitated_fraction),
+        ),
+        Series::new(
+            names::SIDE_LEAKAGE,
+            "side leakage, both ends",
+            "m3 s-1",
+            col(&|s| s.side_leakage[0] + s.side_leakage[1]),
+        ),
+        Series::new(names::POWER_LOSS, "power loss", "W", col(&|s| s.power_loss)),
+        Series::new(
+            "force_residual",
+            "Newton residual |F + W| / max(|W|, W_ref)",
+            "1",
+            col(&|s| s.residual),
+        ),
+    ];
+    if !case.grooves.is_empty() && st.iter().all(|s| s.supply_flow.len() == case.grooves.len()) {
+        series.push(Series::new(
+            names::SUPPLY_FLOW,
+            "supply flow, all grooves",
+            "m3 s-1",
+            col(&|s| s.supply_flow.iter().sum()),
+        ));
+    }
+    let info = &sol.info;
+    MethodResult {
+        method: Method::Rigorous,
+        time: col(&|s| s.time),
+        crank_angle: col(&|s| s.crank_angle_deg),
+        series,
+        fields: inverse_fields(case, sol),
+        solver_info: vec![
+            ("film_model".into(), ParameterValue::Text(film_name.into())),
+            ("cycles".into(), ParameterValue::Integer(info.cycles as i64)),
+            ("periodic".into(), ParameterValue::Flag(info.periodic)),
+            (
+                "eccentricity_change".into(),
+                ParameterValue::Number(info.eccentricity_change),
+            ),
+            (
+                "film_state_change".into(),
+                ParameterValue::Number(info.film_state_change),
+            ),
+            (
+                "steps_per_cycle".into(),
+                ParameterValue::Integer(info.steps_per_cycle as i64),
+            ),
+            (
+                "newton_iterations".into(),
+                ParameterValue::Integer(info.newton_iterations as i64),
+            ),
+            (
+                "film_evaluations".into(),
+                ParameterValue::Integer(info.film_evaluations as i64),
+            ),
+            (
+                "warning".into(),
+                ParameterValue::Text(
+                    info.warning
+                        .as_ref()
+                        .map_or_else(String::new, |w| format!("{w:?}")),
+                ),
+            ),
+        ],
+    }
+}
+
+/// Field snapshots of the final cycle on the case's grid (θ_i = 2π i / n_θ, z_j from −L/2 to
+/// L/2), if the film returned fields of that shape.
+fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> {
+    let snaps = &sol.fields;
+    let first = snaps.first()?;
+    let (nt, nz) = first.fields.pressure.dim();
+    if snaps.iter().any(|s| s.fields.pressure.dim() != (nt, nz)) || nt < 3 || nz < 2 {
+        return None;
+    }
+    let k = snaps.len();
+    let mut pressure = Array3::zeros((k, nt, nz));
+    let mut content = Array3::zeros((k, nt, nz));
+    for (i, s) in snaps.iter().enumerate() {
+        pressure
+            .index_axis_mut(ndarray::Axis(0), i)
+            .assign(&s.fields.pressure);
+        content
+            .index_axis_mut(ndarray::Axis(0), i)
+            .assign(&s.fields.film_fraction);
+    }
+    Some(FieldSnapshots {
+        time: snaps.iter().map(|s| s.time).collect(),
+        crank_angle: snaps.iter().map(|s| s.crank_angle_deg).collect(),
+        theta: (0..nt)
+            .map(|i| std::f64::consts::TAU * i as f64 / nt as f64)
+            .collect(),
+        z: (0..nz)
+            .map(|j| -0.5 * case.length + case.length * j as f64 / (nz - 1) as f64)
+            .collect(),
+        fields: vec![
+            Field {
+                name: names::PRESSURE.into(),
+                long_name: "film pressure, gauge".into(),
+                units: "Pa".into(),
+                values: pressure,
+            },
+            Field {
+                name: names::FILM_CONTENT.into(),
+                long_name: "film content (density ratio / film fraction)".into(),
+                units: "1".into(),
+                values: content,
+            },
+        ],
+    })
+}
+
+/// The case's load, with the crank angle of its table, as the solvers' periodic load.
+struct CaseLoad<'a>(&'a Case, jbearing_solvers::mobility::TabulatedLoad);
+
+impl PeriodicLoad for CaseLoad<'_> {
+    fn period(&self) -> f64 {
+        self.0.period()
+    }
+    fn load(&self, t: f64) -> [f64; 2] {
+        self.1.load_at_crank_angle(self.crank_angle_deg(t))
+    }
+    fn crank_angle_deg(&self, t: f64) -> f64 {
+        (t * self.0.crank_speed).to_degrees()
+    }
+}
+
+/// Booker's mobility method on the case.
+///
+/// The mobility ODE takes constant speeds; a case with speed histories (the connecting-rod
+/// big end, whose ω_b oscillates with the rod) uses their cycle means, and the report says so.
+pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodResult, RunError> {
+    observer.method_started(&case.name, Method::Mobility);
+    let err = |source| RunError::Mobility {
+        case: case.name.clone(),
+        source,
+    };
+    let bearing = MobilityParams {
+        radius: case.radius,
+        length: case.length,
+        radial_clearance: case.radial_clearance,
+        viscosity: case.viscosity,
+        omega_journal: case.journal_speed.mean(case.cycle_deg),
+        omega_bearing: case.bearing_speed.mean(case.cycle_deg),
+    };
+    let mut params = OrbitParams::new(bearing);
+    params.initial_eccentricity = case.solver.initial_eccentricity;
+    params.samples_per_cycle = case.output.samples_per_cycle;
+    params.periodicity_tolerance = case.solver.periodicity_tolerance.min(1e-5);
+    params.max_cycles = case.solver.max_cycles.max(2) * 5;
+    params.eccentricity_limit = case.solver.eccentricity_limit.max(0.9995);
+    let load = CaseLoad(case, case.load());
+    let ld = bearing.length_to_diameter();
+    let (orbit, model_name): (OrbitInfo, &str) = match case.solver.mobility_model {
+        MobilityModelChoice::Booker => (
+            solve_orbit(
+                &params,
+                &BookerShortBearing {
+                    length_to_diameter: ld,
+                },
+                &load,
+            )
+            .map_err(err)?,
+            "Booker short-bearing closed form (seed 000 eqs. 28-35)",
+        ),
+        MobilityModelChoice::ExactShort => (
+            solve_orbit(
+                &params,
+                &ExactShortBearing {
+                    length_to_diameter: ld,
+                },
+                &load,
+            )
+            .map_err(err)?,
+            "exact short-bearing mobility (inverted squeeze integrals)",
+        ),
+        MobilityModelChoice::Map => {
+            let map = MobilityMap::build(
+                &ShortBearingSqueeze {
+                    length_to_diameter: ld,
+                },
+                &MobilityMapParams::default(),
+            )
+            .map_err(|e| RunError::MobilityMap {
+                case: case.name.clone(),
+                message: e.to_string(),
+            })?;
+            check_model(&map, ld);
+            (
+                solve_orbit(&params, &map, &load).map_err(err)?,
+                "tabulated mobility map (short-bearing squeeze provider until the finite-length \
+                 Reynolds provider is on main)",
+            )
+        }
+    };
+    observer.cycle_done(
+        &case.name,
+        Method::Mobility,
+        orbit.cycles,
+        orbit.periodicity_change,
+    );
+    observer.method_done(&case.name, Method::Mobility);
+    Ok(mobility_result(case, &orbit, model_name, &bearing))
+}
+
+fn check_model(m: &dyn MobilityModel, ld: f64) {
+    debug_assert!((m.length_to_diameter() - ld).abs() <= 1e-9 * ld);
+}
+
+fn mobility_result(
+    case: &Case,
+    orbit: &OrbitInfo,
+    model_name: &str,
+    bearing: &MobilityParams,
+) -> MethodResult {
+    let c = case.radial_clearance;
+    let cycle = case.cycle_deg;
+    let shift = (orbit.crank_angle_deg[0] / cycle).floor() * cycle;
+    let crank: Vec<f64> = orbit.crank_angle_deg.iter().map(|a| a - shift).collect();
+    let perf = &orbit.performance;
+    let col = |f: &dyn Fn(usize) -> f64| (0..orbit.time.len()).map(f).collect::<Vec<f64>>();
+    let series = vec![
+        Series::new(
+            names::LOAD_X,
+            "load on the journal, x",
+            "N",
+            col(&|i| orbit.load[i][0]),
+        ),
+        Series::new(
+            names::LOAD_Y,
+            "load on the journal, y",
+            "N",
+            col(&|i| orbit.load[i][1]),
+        ),
+        Series::new(
+            names::FEED_PRESSURE,
+            "feed pressure (input; the mobility method ignores it)",
+            "Pa",
+            col(&|i| case.feed_pressure.at(crank[i], cycle)),
+        ),
+        Series::new(
+            names::ECCENTRICITY_X,
+            "journal centre, x",
+            "m",
+            col(&|i| c * orbit.eccentricity[i][0]),
+        ),
+        Series::new(
+            names::ECCENTRICITY_Y,
+            "journal centre, y",
+            "m",
+            col(&|i| c * orbit.eccentricity[i][1]),
+        ),
+        Series::new(
+            names::ECCENTRICITY_RATIO,
+            "eccentricity ratio",
+            "1",
+            col(&|i| perf[i].eccentricity_ratio),
+        ),
+        Series::new(
+            names::ATTITUDE_ANGLE,
+            "attitude angle of the journal centre",
+            "rad",
+            col(&|i| orbit.attitude_angle[i]),
+        ),
+        Series::new(
+            names::MIN_FILM_THICKNESS,
+            "minimum film thickness",
+            "m",
+            col(&|i| perf[i].min_film_thickness),
+        ),
+        Series::new(
+            names::MAX_PRESSURE,
+            "peak film pressure (short-bearing closed form)",
+            "Pa",
+            col(&|i| perf[i].peak_pressure),
+        ),
+        Series::new(
+            names::SIDE_LEAKAGE,
+            "side leakage (short-bearing closed form)",
+            "m3 s-1",
+            col(&|i| perf[i].side_flow),
+        ),
+        Series::new(
+            names::POWER_LOSS,
+            "power loss (shear + squeeze, closed forms)",
+            "W",
+            col(&|i| perf[i].power_loss),
+        ),
+    ];
+    MethodResult {
+        method: Method::Mobility,
+        time: orbit.time.clone(),
+        crank_angle: crank,
+        series,
+        fields: None,
+        solver_info: vec![
+            ("model".into(), ParameterValue::Text(model_name.into())),
+            (
+                "cycles".into(),
+                ParameterValue::Integer(orbit.cycles as i64),
+            ),
+            (
+                "periodicity_change".into(),
+                ParameterValue::Number(orbit.periodicity_change),
+            ),
+            (
+                "rhs_evaluations".into(),
+                ParameterValue::Integer(orbit.rhs_evaluations as i64),
+            ),
+            (
+                "accepted_steps".into(),
+                ParameterValue::Integer(orbit.accepted_steps as i64),
+            ),
+            (
+                "rejected_steps".into(),
+                ParameterValue::Integer(orbit.rejected_steps as i64),
+            ),
+            (
+                "omega_bar".into(),
+                ParameterValue::Number(bearing.omega_bar()),
+            ),
+            (
+                "speeds".into(),
+                ParameterValue::Text(
+                    "constant: cycle means of the case's journal and bearing speeds".into(),
+                ),
+            ),
+        ],
+    }
+}
+
+/// The summary table of a report from its methods.
+pub fn summary_rows(methods: &[MethodResult]) -> Vec<SummaryRow> {
+    use Reduction::*;
+    [
+        (
+            names::MIN_FILM_THICKNESS,
+            Min,
+            "min_film_thickness_min",
+            "cycle minimum of the minimum film thickness",
+        ),
+        (
+            names::ECCENTRICITY_RATIO,
+            Max,
+            "eccentricity_ratio_max",
+            "cycle maximum of the eccentricity ratio",
+        ),
+        (
+            names::ECCENTRICITY_RATIO,
+            Mean,
+            "eccentricity_ratio_mean",
+            "cycle mean of the eccentricity ratio",
+        ),
+        (
+            names::MAX_PRESSURE,
+            Max,
+            "max_pressure_max",
+            "cycle maximum of the peak film pressure",
+        ),
+        (
+            names::SIDE_LEAKAGE,
+            Mean,
+            "side_leakage_mean",
+            "cycle mean of the side leakage",
+        ),
+        (
+            names::SUPPLY_FLOW,
+            Mean,
+            "supply_flow_mean",
+            "cycle mean of the supply flow",
+        ),
+        (
+            names::POWER_LOSS,
+            Mean,
+            "power_loss_mean",
+            "cycle mean of the power loss",
+        ),
+    ]
+    .into_iter()
+    .map(|(s, how, n, l)| SummaryRow::from_series(methods, s, how, n, l))
+    .filter(|r| r.rigorous.is_some() || r.mobility.is_some())
+    .collect()
+}
+
+/// Solve the case with the methods it asks for and build its report (nothing is written).
+pub fn solve_case(case: &Case, observer: &dyn RunObserver) -> Result<CaseReport, RunError> {
+    let started = now_utc();
+    let t0 = Instant::now();
+    let mut methods = Vec::new();
+    let mut parameters = case.parameters();
+    if case.methods.rigorous {
+        match run_rigorous(case, observer)? {
+            Some(r) => methods.push(r),
+            None => {
+                tracing::warn!(case = %case.name, "{RIGOROUS_MISSING}");
+                parameters.push(Parameter::text(
+                    "rigorous_status",
+                    RIGOROUS_MISSING,
+                    "why the rigorous method is absent",
+                ));
+            }
+        }
+    }
+    if case.methods.mobility {
+        methods.push(run_mobility(case, observer)?);
+    }
+    let summary = summary_rows(&methods);
+    Ok(CaseReport {
+        case_name: case.name.clone(),
+        case_text: case.text.clone(),
+        case_path: case.path.clone(),
+        input_files: case.input_files.clone(),
+        geometry: case.geometry(),
+        parameters,
+        run: RunInfo::for_this_build(t0.elapsed().as_secs_f64(), &started),
+        methods,
+        summary,
+    })
+}
+
+/// Read, solve and write one case into `out_dir` (created if missing).
+pub fn run_case_file(
+    path: &Path,
+    out_dir: &Path,
+    observer: &dyn RunObserver,
+) -> Result<CaseOutcome, RunError> {
+    let case = Case::from_file(path)?;
+    let report = solve_case(&case, observer)?;
+    std::fs::create_dir_all(out_dir).map_err(|source| RunError::OutputDir {
+        path: out_dir.to_path_buf(),
+        source,
+    })?;
+    let mut files = Vec::new();
+    for w in standard_writers() {
+        if !case.output.plots && w.name() == "plots" {
+            continue;
+        }
+        files.extend(w.write(&report, out_dir)?);
+    }
+    Ok(CaseOutcome { report, files })
+}
+
+/// Current time as ISO 8601 UTC, without a date crate (civil-from-days, H. Hinnant).
+pub fn now_utc() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs() as i64);
+    let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    )
+}
