@@ -24,6 +24,18 @@
 //!
 //! No bench allocates inside the timed loop except faer's and nalgebra's factorizations (their
 //! APIs allocate the factors; that is part of their cost).
+//!
+//! ## Clock
+//!
+//! The group is timed in the CPU time of the benchmarking thread ([`ThreadCpuTime`],
+//! `clock_gettime(CLOCK_THREAD_CPUTIME_ID)`), not wall time: the project's machines are shared
+//! (2 cores, several builds at once), and a descheduled thread inflates a wall-clock sample by
+//! the time slices of other processes, which makes ratios between benches run minutes apart
+//! meaningless. CPU time still includes the cache misses that other processes cause. Criterion's
+//! warm-up and measurement times then count CPU seconds, so a run takes longer in wall time on a
+//! loaded machine. Values are nanoseconds, as with wall time, so reports and `cargo bench-table`
+//! read them the same way.
+use criterion::measurement::{Measurement, ValueFormatter, WallTime};
 use criterion::{BenchmarkId, Criterion, Throughput};
 use faer::linalg::solvers::SolveCore;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
@@ -35,6 +47,48 @@ use jbearing_solvers::tridiagonal::{
 };
 use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
+
+/// Criterion measurement: CPU time of the calling thread, in nanoseconds (see the module docs).
+pub struct ThreadCpuTime;
+
+impl ThreadCpuTime {
+    fn now_ns() -> u64 {
+        let mut t = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: `t` is a valid, writable timespec; CLOCK_THREAD_CPUTIME_ID is supported by
+        // every Linux kernel since 2.6.12.
+        let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
+        assert_eq!(rc, 0, "clock_gettime(CLOCK_THREAD_CPUTIME_ID) failed");
+        t.tv_sec as u64 * 1_000_000_000 + t.tv_nsec as u64
+    }
+}
+
+impl Measurement for ThreadCpuTime {
+    type Intermediate = u64;
+    type Value = u64;
+
+    fn start(&self) -> u64 {
+        Self::now_ns()
+    }
+    fn end(&self, start: u64) -> u64 {
+        Self::now_ns().saturating_sub(start)
+    }
+    fn add(&self, a: &u64, b: &u64) -> u64 {
+        a + b
+    }
+    fn zero(&self) -> u64 {
+        0
+    }
+    fn to_f64(&self, v: &u64) -> f64 {
+        *v as f64
+    }
+    fn formatter(&self) -> &dyn ValueFormatter {
+        // Nanoseconds, formatted like durations.
+        WallTime.formatter()
+    }
+}
 
 /// Line lengths of the issue (unknowns per line).
 const SIZES: [usize; 5] = [16, 64, 256, 1024, 4096];
@@ -140,7 +194,7 @@ impl ShermanMorrison {
     }
 }
 
-pub fn bench(c: &mut Criterion) {
+pub fn bench(c: &mut Criterion<ThreadCpuTime>) {
     // The kernels are sequential; compare faer sequential too.
     faer::set_global_parallelism(faer::Par::Seq);
     let mut group = c.benchmark_group("kernel");

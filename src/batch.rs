@@ -74,6 +74,26 @@ impl RunObserver for BarObserver {
             b.set_message(format!("{method}: cycle {cycle}, residual {residual:.2e}"))
         });
     }
+    fn progress(
+        &self,
+        case: &str,
+        method: Method,
+        cycle: usize,
+        step: usize,
+        steps: usize,
+        residual: f64,
+    ) {
+        let phase = if cycle == 0 {
+            "run-in".to_string()
+        } else {
+            format!("cycle {cycle}")
+        };
+        self.with_bar(case, |b| {
+            b.set_message(format!(
+                "{method}: {phase}, step {step}/{steps}, residual {residual:.2e}"
+            ))
+        });
+    }
     fn method_done(&self, case: &str, method: Method) {
         self.with_bar(case, |b| b.set_message(format!("{method}: done")));
     }

@@ -19,10 +19,17 @@ use jbearing_solvers::mobility::{
     solve_orbit,
 };
 
-use crate::case::{Case, CaseError, MobilityModelChoice};
+use jbearing_solvers::inverse::{
+    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution,
+    ShortBearingFilm, ShortBearingParams, TimeScheme, solve_inverse,
+};
+use jbearing_solvers::load::LoadHistory;
+use ndarray::Array3;
+
+use crate::case::{Case, CaseError, MobilityModelChoice, RigorousFilm};
 use crate::output::{
-    CaseReport, Method, MethodResult, OutputError, Parameter, ParameterValue, Reduction, RunInfo,
-    Series, SummaryRow, names, standard_writers,
+    CaseReport, Field, FieldSnapshots, Method, MethodResult, OutputError, Parameter,
+    ParameterValue, Reduction, RunInfo, Series, SummaryRow, names, standard_writers,
 };
 
 /// Progress of one case, for progress bars and logs. Every method has a default that does
@@ -32,6 +39,17 @@ pub trait RunObserver: Sync {
     fn method_started(&self, _case: &str, _method: Method) {}
     /// A cycle of a method ended, with its periodicity change (or solver residual).
     fn cycle_done(&self, _case: &str, _method: Method, _cycle: usize, _residual: f64) {}
+    /// Within a cycle (cycle 0 = run-in): step of steps, with the step's residual.
+    fn progress(
+        &self,
+        _case: &str,
+        _method: Method,
+        _cycle: usize,
+        _step: usize,
+        _steps: usize,
+        _residual: f64,
+    ) {
+    }
     /// A method finished.
     fn method_done(&self, _case: &str, _method: Method) {}
 }
@@ -63,6 +81,14 @@ pub enum RunError {
         /// What failed.
         message: String,
     },
+    /// The rigorous (inverse) method failed.
+    #[error("case '{case}': rigorous method: {message}")]
+    Rigorous {
+        /// Case name.
+        case: String,
+        /// The solver's error.
+        message: String,
+    },
     /// Writing the results failed.
     #[error(transparent)]
     Output(#[from] OutputError),
@@ -86,18 +112,342 @@ pub struct CaseOutcome {
     pub files: Vec<PathBuf>,
 }
 
-/// The rigorous inverse solution of the case, or `None` with the reason while that solver is not
-/// part of this build. This is the one place the rigorous method enters the application.
+/// The rigorous inverse solution of the case, or `None` while its film is not part of this
+/// build. This is the one place the rigorous method enters the application:
+///
+/// ```text
+///   Case ──► CaseHistory (LoadHistory: load, ω_j(t), ω_b(t), p_feed(t) per groove)
+///        ──► film: Reynolds (JFO)            [when the reynolds solver is on main]
+///                  | ShortBearingFilm        [solver.rigorous_film = "short_bearing"]
+///        ──► solve_inverse(InverseParams from [solver]) ──► inverse_result ──► MethodResult
+/// ```
 pub fn run_rigorous(
-    _case: &Case,
-    _observer: &dyn RunObserver,
+    case: &Case,
+    observer: &dyn RunObserver,
 ) -> Result<Option<MethodResult>, RunError> {
-    Ok(None)
+    let params = inverse_params(case);
+    let history = CaseHistory::new(case);
+    let mut adapter = InverseAdapter {
+        case: &case.name,
+        observer,
+    };
+    match case.solver.rigorous_film {
+        RigorousFilm::Reynolds => Ok(None),
+        RigorousFilm::ShortBearing => {
+            observer.method_started(&case.name, Method::Rigorous);
+            let mut film = ShortBearingFilm::new(ShortBearingParams {
+                radius: case.radius,
+                length: case.length,
+                radial_clearance: case.radial_clearance,
+                viscosity: case.viscosity,
+                scheme: if case.solver.crank_nicolson {
+                    TimeScheme::CrankNicolson
+                } else {
+                    TimeScheme::BackwardEuler
+                },
+            })
+            .map_err(|e| RunError::Rigorous {
+                case: case.name.clone(),
+                message: e.to_string(),
+            })?;
+            let solution =
+                solve_inverse(&params, &history, &mut film, &mut adapter).map_err(|e| {
+                    RunError::Rigorous {
+                        case: case.name.clone(),
+                        message: e.to_string(),
+                    }
+                })?;
+            observer.method_done(&case.name, Method::Rigorous);
+            Ok(Some(inverse_result(
+                case,
+                &solution,
+                "inverse solver with the analytic short-bearing film (Gumbel half film, moving \
+                 journal) - NOT the mass-conserving Reynolds film",
+            )))
+        }
+    }
 }
 
 /// Why the rigorous method is absent from a report (the note written into the file).
-pub const RIGOROUS_MISSING: &str = "the rigorous inverse (JFO) solver is not part of this build \
-     yet: this report holds the mobility method only";
+pub const RIGOROUS_MISSING: &str = "the mass-conserving Reynolds (JFO) film is not part of this \
+     build yet: this report holds the mobility method only (the inverse solver is wired; \
+     solver.rigorous_film = \"short_bearing\" runs it with the analytic short-bearing film)";
+
+/// The inverse solver's settings from the case's `[solver]` and `[output]` tables.
+pub fn inverse_params(case: &Case) -> InverseParams {
+    let s = &case.solver;
+    let steps = s.time_steps_per_cycle.max(4);
+    InverseParams {
+        step_deg: case.cycle_deg / steps as f64,
+        tolerance: s.force_tolerance.max(1e-10),
+        max_cycles: s.max_cycles,
+        periodicity_tolerance: s.periodicity_tolerance,
+        collapse_eccentricity: s.eccentricity_limit,
+        field_stride: steps
+            .checked_div(case.output.field_snapshots)
+            .map_or(0, |k| k.max(1)),
+        ..InverseParams::default()
+    }
+}
+
+/// The case's histories as the inverse solver's [`LoadHistory`].
+pub struct CaseHistory<'a> {
+    case: &'a Case,
+    load: jbearing_solvers::mobility::TabulatedLoad,
+}
+
+impl<'a> CaseHistory<'a> {
+    /// Histories of `case`.
+    pub fn new(case: &'a Case) -> Self {
+        Self {
+            case,
+            load: case.load(),
+        }
+    }
+    fn angle(&self, t: f64) -> f64 {
+        (t * self.case.crank_speed).to_degrees()
+    }
+}
+
+impl LoadHistory for CaseHistory<'_> {
+    fn period(&self) -> f64 {
+        self.case.period()
+    }
+    fn load(&self, t: f64) -> [f64; 2] {
+        self.load.load_at_crank_angle(self.angle(t))
+    }
+    fn journal_speed(&self, t: f64) -> f64 {
+        self.case
+            .journal_speed
+            .at(self.angle(t), self.case.cycle_deg)
+    }
+    fn bearing_speed(&self, t: f64) -> f64 {
+        self.case
+            .bearing_speed
+            .at(self.angle(t), self.case.cycle_deg)
+    }
+    fn feed_pressures(&self, t: f64) -> Vec<f64> {
+        let p = self
+            .case
+            .feed_pressure
+            .at(self.angle(t), self.case.cycle_deg);
+        vec![p; self.case.grooves.len()]
+    }
+    fn crank_angle_deg(&self, t: f64) -> f64 {
+        self.angle(t)
+    }
+    fn cycle_deg(&self) -> f64 {
+        self.case.cycle_deg
+    }
+}
+
+/// Passes the inverse solver's progress on to a [`RunObserver`].
+struct InverseAdapter<'a> {
+    case: &'a str,
+    observer: &'a dyn RunObserver,
+}
+
+impl InverseObserver for InverseAdapter<'_> {
+    fn on_step(&mut self, p: &InverseProgress) {
+        if p.step.is_multiple_of(10) || p.step == p.steps {
+            let cycle = match p.phase {
+                InversePhase::RunIn => 0,
+                InversePhase::Cycle(k) => k,
+            };
+            self.observer.progress(
+                self.case,
+                Method::Rigorous,
+                cycle,
+                p.step,
+                p.steps,
+                p.residual,
+            );
+        }
+    }
+    fn on_cycle(&mut self, cycle: usize, eccentricity_change: f64, _film: f64) {
+        self.observer
+            .cycle_done(self.case, Method::Rigorous, cycle, eccentricity_change);
+    }
+}
+
+/// The inverse solution as the report's rigorous [`MethodResult`].
+pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> MethodResult {
+    let c = case.radial_clearance;
+    let st = &sol.steps;
+    let col = |f: &dyn Fn(&jbearing_solvers::inverse::InverseStep) -> f64| {
+        st.iter().map(f).collect::<Vec<f64>>()
+    };
+    let mut series = vec![
+        Series::new(
+            names::LOAD_X,
+            "load on the journal, x",
+            "N",
+            col(&|s| s.load[0]),
+        ),
+        Series::new(
+            names::LOAD_Y,
+            "load on the journal, y",
+            "N",
+            col(&|s| s.load[1]),
+        ),
+        Series::new(
+            names::FEED_PRESSURE,
+            "feed pressure",
+            "Pa",
+            col(&|s| case.feed_pressure.at(s.crank_angle_deg, case.cycle_deg)),
+        ),
+        Series::new(
+            names::ECCENTRICITY_X,
+            "journal centre, x",
+            "m",
+            col(&|s| c * s.eccentricity_ratio[0]),
+        ),
+        Series::new(
+            names::ECCENTRICITY_Y,
+            "journal centre, y",
+            "m",
+            col(&|s| c * s.eccentricity_ratio[1]),
+        ),
+        Series::new(
+            names::ECCENTRICITY_RATIO,
+            "eccentricity ratio",
+            "1",
+            col(&|s| s.eccentricity_ratio[0].hypot(s.eccentricity_ratio[1])),
+        ),
+        Series::new(
+            names::ATTITUDE_ANGLE,
+            "attitude angle of the journal centre",
+            "rad",
+            col(&|s| s.attitude_angle),
+        ),
+        Series::new(
+            names::MIN_FILM_THICKNESS,
+            "minimum film thickness",
+            "m",
+            col(&|s| s.min_film_thickness),
+        ),
+        Series::new(
+            names::MAX_PRESSURE,
+            "peak film pressure",
+            "Pa",
+            col(&|s| s.max_pressure),
+        ),
+        Series::new(
+            names::CAVITATED_FRACTION,
+            "cavitated fraction of the film area",
+            "1",
+            col(&|s| s.cavitated_fraction),
+        ),
+        Series::new(
+            names::SIDE_LEAKAGE,
+            "side leakage, both ends",
+            "m3 s-1",
+            col(&|s| s.side_leakage[0] + s.side_leakage[1]),
+        ),
+        Series::new(names::POWER_LOSS, "power loss", "W", col(&|s| s.power_loss)),
+        Series::new(
+            "force_residual",
+            "Newton residual |F + W| / max(|W|, W_ref)",
+            "1",
+            col(&|s| s.residual),
+        ),
+    ];
+    if !case.grooves.is_empty() && st.iter().all(|s| s.supply_flow.len() == case.grooves.len()) {
+        series.push(Series::new(
+            names::SUPPLY_FLOW,
+            "supply flow, all grooves",
+            "m3 s-1",
+            col(&|s| s.supply_flow.iter().sum()),
+        ));
+    }
+    let info = &sol.info;
+    MethodResult {
+        method: Method::Rigorous,
+        time: col(&|s| s.time),
+        crank_angle: col(&|s| s.crank_angle_deg),
+        series,
+        fields: inverse_fields(case, sol),
+        solver_info: vec![
+            ("film_model".into(), ParameterValue::Text(film_name.into())),
+            ("cycles".into(), ParameterValue::Integer(info.cycles as i64)),
+            ("periodic".into(), ParameterValue::Flag(info.periodic)),
+            (
+                "eccentricity_change".into(),
+                ParameterValue::Number(info.eccentricity_change),
+            ),
+            (
+                "film_state_change".into(),
+                ParameterValue::Number(info.film_state_change),
+            ),
+            (
+                "steps_per_cycle".into(),
+                ParameterValue::Integer(info.steps_per_cycle as i64),
+            ),
+            (
+                "newton_iterations".into(),
+                ParameterValue::Integer(info.newton_iterations as i64),
+            ),
+            (
+                "film_evaluations".into(),
+                ParameterValue::Integer(info.film_evaluations as i64),
+            ),
+            (
+                "warning".into(),
+                ParameterValue::Text(
+                    info.warning
+                        .as_ref()
+                        .map_or_else(String::new, |w| format!("{w:?}")),
+                ),
+            ),
+        ],
+    }
+}
+
+/// Field snapshots of the final cycle on the case's grid (θ_i = 2π i / n_θ, z_j from −L/2 to
+/// L/2), if the film returned fields of that shape.
+fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> {
+    let snaps = &sol.fields;
+    let first = snaps.first()?;
+    let (nt, nz) = first.fields.pressure.dim();
+    if snaps.iter().any(|s| s.fields.pressure.dim() != (nt, nz)) || nt < 3 || nz < 2 {
+        return None;
+    }
+    let k = snaps.len();
+    let mut pressure = Array3::zeros((k, nt, nz));
+    let mut content = Array3::zeros((k, nt, nz));
+    for (i, s) in snaps.iter().enumerate() {
+        pressure
+            .index_axis_mut(ndarray::Axis(0), i)
+            .assign(&s.fields.pressure);
+        content
+            .index_axis_mut(ndarray::Axis(0), i)
+            .assign(&s.fields.film_fraction);
+    }
+    Some(FieldSnapshots {
+        time: snaps.iter().map(|s| s.time).collect(),
+        crank_angle: snaps.iter().map(|s| s.crank_angle_deg).collect(),
+        theta: (0..nt)
+            .map(|i| std::f64::consts::TAU * i as f64 / nt as f64)
+            .collect(),
+        z: (0..nz)
+            .map(|j| -0.5 * case.length + case.length * j as f64 / (nz - 1) as f64)
+            .collect(),
+        fields: vec![
+            Field {
+                name: names::PRESSURE.into(),
+                long_name: "film pressure, gauge".into(),
+                units: "Pa".into(),
+                values: pressure,
+            },
+            Field {
+                name: names::FILM_CONTENT.into(),
+                long_name: "film content (density ratio / film fraction)".into(),
+                units: "1".into(),
+                values: content,
+            },
+        ],
+    })
+}
 
 /// The case's load, with the crank angle of its table, as the solvers' periodic load.
 struct CaseLoad<'a>(&'a Case, jbearing_solvers::mobility::TabulatedLoad);

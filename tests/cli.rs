@@ -248,3 +248,63 @@ fn help_names_every_command() {
         assert!(help.contains(cmd), "--help lacks {cmd}:\n{help}");
     }
 }
+
+#[test]
+fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
+    // Independent check of the rigorous-method wiring: the inverse solver stepping the analytic
+    // short-bearing film (Newton on ε per time step) and Booker's mobility ODE (closed-form
+    // short-bearing mobility, adaptive integration) solve the same short-bearing problem by
+    // different routes; on the Flores case they must give nearly the same cycle. Booker's closed
+    // form approximates the short-bearing squeeze film (seed 000 eqs. 28-35) to a few per cent,
+    // hence 5 %.
+    let dir = tempfile::tempdir().unwrap();
+    let toml_text = std::fs::read_to_string(root().join("cases/flores2006_mobility.toml"))
+        .unwrap()
+        .replace("rigorous = false", "rigorous = true")
+        .replace(
+            "mobility_model = \"booker\"",
+            "mobility_model = \"booker\"\nrigorous_film = \"short_bearing\"",
+        );
+    let case = dir.path().join("flores_inverse.toml");
+    std::fs::write(&case, toml_text).unwrap();
+    std::fs::copy(
+        root().join("cases/flores2006_load.csv"),
+        dir.path().join("flores2006_load.csv"),
+    )
+    .unwrap();
+    let out_dir = dir.path().join("out");
+    let out = jbearing(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let mut rdr = csv::Reader::from_path(out_dir.join("flores2006_mobility_summary.csv")).unwrap();
+    let headers = rdr.headers().unwrap().clone();
+    let rig = headers
+        .iter()
+        .position(|h| h.starts_with("rigorous"))
+        .unwrap();
+    let mob = headers
+        .iter()
+        .position(|h| h.starts_with("mobility"))
+        .unwrap();
+    for row in rdr.records().map(|r| r.unwrap()) {
+        if [
+            "min_film_thickness_min",
+            "side_leakage_mean",
+            "power_loss_mean",
+            "eccentricity_ratio_max",
+        ]
+        .contains(&&row[0])
+        {
+            let (r, m): (f64, f64) = (row[rig].parse().unwrap(), row[mob].parse().unwrap());
+            assert!(
+                (r - m).abs() <= 0.05 * r.abs(),
+                "{}: inverse {r} vs mobility {m}",
+                &row[0]
+            );
+        }
+    }
+}

@@ -23,11 +23,19 @@
 //! - [`slider_crank`]: a single-cylinder slider-crank compressor (polytropic cylinder cycle,
 //!   two-mass rod) giving the main- and rod-bearing loads, the rod's angular velocity and the rod
 //!   bearing's feed pressure through the crank drilling (the compressor cases of Yu & Sawicki).
+//! - [`squeeze_film`]: the finite-length pure-squeeze film under the Reynolds condition
+//!   (finite differences + active set), the source of the finite-length mobility map.
+//! - [`reynolds`]: the universal (Elrod–Vijayaraghavan, mass-conserving) Reynolds equation on a
+//!   θ × z grid: steady and time-stepped films, grooves and supply cut-off, ADI-preconditioned
+//!   Krylov solve with a sparse-LU oracle, outputs (force, h_min, p_max, flows, power loss) and
+//!   the steady load → eccentricity Newton solve.
 
 pub mod closed_form;
 pub mod inverse;
 pub mod load;
 pub mod mobility;
+pub mod reynolds;
 pub mod ritz;
 pub mod slider_crank;
+pub mod squeeze_film;
 pub mod tridiagonal;

@@ -113,6 +113,16 @@ pub enum MobilityModelChoice {
     Map,
 }
 
+/// Which film the inverse ("rigorous") solver steps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RigorousFilm {
+    /// The mass-conserving universal Reynolds (JFO) film: the rigorous method proper.
+    Reynolds,
+    /// The analytic short-bearing film (Gumbel half film, moving journal): the inverse solver's
+    /// closed-form film, not mass-conserving; for comparisons and quick checks.
+    ShortBearing,
+}
+
 /// Solver settings, resolved.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolverOptions {
@@ -132,6 +142,8 @@ pub struct SolverOptions {
     pub mobility_model: MobilityModelChoice,
     /// ε at the start.
     pub initial_eccentricity: [f64; 2],
+    /// Film of the inverse solver.
+    pub rigorous_film: RigorousFilm,
 }
 
 /// Output settings, resolved.
@@ -330,6 +342,14 @@ impl Case {
                     MobilityModelChoice::Map => "map",
                 },
                 "mobility model",
+            ),
+            Parameter::text(
+                "rigorous_film",
+                match self.solver.rigorous_film {
+                    RigorousFilm::Reynolds => "reynolds",
+                    RigorousFilm::ShortBearing => "short_bearing",
+                },
+                "film model of the inverse solver",
             ),
             Parameter::flag(
                 "crank_nicolson",
@@ -1069,6 +1089,16 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             ));
         }
     };
+    let rigorous_film = match s.rigorous_film.as_str() {
+        "reynolds" => RigorousFilm::Reynolds,
+        "short_bearing" => RigorousFilm::ShortBearing,
+        other => {
+            return Err(ctx.err(
+                "solver.rigorous_film",
+                format!("'{other}' is not one of: reynolds, short_bearing"),
+            ));
+        }
+    };
     let out = &raw.output;
     if out.samples_per_cycle < 8 {
         return Err(ctx.err(
@@ -1118,6 +1148,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             crank_nicolson: s.crank_nicolson,
             mobility_model,
             initial_eccentricity: s.initial_eccentricity,
+            rigorous_film,
         },
         output: OutputOptions {
             samples_per_cycle: out.samples_per_cycle,

@@ -150,6 +150,8 @@ pub struct SolverSection {
     pub mobility_model: String,
     #[serde(default)]
     pub initial_eccentricity: [f64; 2],
+    #[serde(default = "default_rigorous_film")]
+    pub rigorous_film: String,
 }
 
 impl Default for SolverSection {
@@ -163,6 +165,7 @@ impl Default for SolverSection {
             crank_nicolson: true,
             mobility_model: default_mobility_model(),
             initial_eccentricity: [0.0, 0.0],
+            rigorous_film: default_rigorous_film(),
         }
     }
 }
@@ -247,6 +250,9 @@ fn default_eccentricity_limit() -> f64 {
 }
 fn default_mobility_model() -> String {
     "booker".into()
+}
+fn default_rigorous_film() -> String {
+    "reynolds".into()
 }
 fn default_samples() -> usize {
     360

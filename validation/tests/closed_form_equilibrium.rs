@@ -11,7 +11,8 @@
 //! table quoted in the README.
 
 use jbearing_solvers::closed_form::{
-    ClosedFormModel, ClosedFormParams, EquilibriumSolution, static_equilibrium,
+    ClosedFormModel, ClosedFormParams, EquilibriumSolution, JournalMotion, film_force,
+    static_equilibrium,
 };
 use std::f64::consts::PI;
 
@@ -93,4 +94,142 @@ fn flores_simple_bearing_equilibrium_of_every_model() {
     assert!(sol[&ShortSommerfeld].eccentricity_ratio < sol[&LongSommerfeld].eccentricity_ratio);
     assert!(sol[&LongSommerfeld].eccentricity_ratio < sol[&LongGumbel].eccentricity_ratio);
     assert!(sol[&ShortSommerfeld].eccentricity_ratio < sol[&ShortGumbel].eccentricity_ratio);
+}
+
+/// Integrate m ẍ = F(x, ẋ) + W from the centre at rest (classical RK4, fixed step); returns the
+/// final state and the largest distance from `eq` over the last 20 % of the run.
+fn transient(
+    force: impl Fn(&JournalMotion) -> [f64; 2],
+    eq: [f64; 2],
+    t_end: f64,
+) -> Result<([f64; 4], f64), String> {
+    let p = params();
+    let w = [0.0, -EQUILIBRIUM_FORCE];
+    let mass = 0.13;
+    let c = p.radial_clearance;
+    let om = omega();
+    // The film's radial damping coefficient at ε = 0 is ~12π μ L R³/c³ ≈ 7e4 N·s/m, m/C ≈ 2e-6 s:
+    // dt = 4e-7 s keeps RK4 inside its stability region (|λ dt| ≤ 2.8) on these paths (ε ≤ 0.5).
+    let dt = 4e-7;
+    let steps = (t_end / dt) as usize;
+    let accel = |s: [f64; 4]| -> [f64; 4] {
+        let m = JournalMotion::from_cartesian([s[0], s[1]], [s[2], s[3]], om);
+        let f = force(&m);
+        [
+            s[2],
+            s[3],
+            (f[0] + w[0]) / (mass * c),
+            (f[1] + w[1]) / (mass * c),
+        ]
+    };
+    let mut s = [0.0; 4];
+    let mut late_max: f64 = 0.0;
+    for n in 0..steps {
+        let k1 = accel(s);
+        let y2: [f64; 4] = std::array::from_fn(|i| s[i] + 0.5 * dt * k1[i]);
+        let k2 = accel(y2);
+        let y3: [f64; 4] = std::array::from_fn(|i| s[i] + 0.5 * dt * k2[i]);
+        let k3 = accel(y3);
+        let y4: [f64; 4] = std::array::from_fn(|i| s[i] + dt * k3[i]);
+        let k4 = accel(y4);
+        for i in 0..4 {
+            s[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+        let e = s[0].hypot(s[1]);
+        if e.is_nan() || e >= 1.0 {
+            return Err(format!("film collapse at t = {:.4} s", n as f64 * dt));
+        }
+        if n as f64 * dt > 0.8 * t_end {
+            late_max = late_max.max((s[0] - eq[0]).hypot(s[1] - eq[1]));
+        }
+    }
+    Ok((s, late_max))
+}
+
+/// The transient of seed 004 §7 (Figs. 9–11): the journal (0.13 kg) starts at the bearing centre
+/// at rest under the constant load; m ẍ = F_film(x, ẋ) + W. The paper: with the Gumbel films
+/// (and Pinkus–Sternlicht, "with lower damping") the journal reaches its equilibrium after a
+/// damped transient and the fluid force tends to F_X = 0, F_Y = 31.275 N; with the Sommerfeld
+/// films it keeps circling the equilibrium (undamped). This exercises every force formula with
+/// ε̇ ≠ 0 and γ̇ ≠ 0.
+#[test]
+fn flores_transient_gumbel_films_settle_sommerfeld_films_keep_orbiting() {
+    let p = params();
+    let mut late = std::collections::HashMap::new();
+    for model in ClosedFormModel::ALL {
+        let eq = solve(model).eccentricity_ratio_vector;
+        let d0 = eq[0].hypot(eq[1]);
+        let (s, late_max) =
+            transient(|m| film_force(model, &p, m).unwrap().cartesian, eq, 1.5).unwrap();
+        println!(
+            "{}: final ε = ({:.5}, {:.5}), equilibrium ({:.5}, {:.5}), late max distance {:.3e} (initial {:.3e})",
+            model.name(),
+            s[0],
+            s[1],
+            eq[0],
+            eq[1],
+            late_max,
+            d0
+        );
+        use ClosedFormModel::*;
+        match model {
+            // Undamped: the orbit does not close in on the equilibrium.
+            ShortSommerfeld | LongSommerfeld => assert!(late_max > 0.3 * d0, "{model:?}"),
+            _ => assert!(late_max < 1e-3 * d0, "{model:?} not settled: {late_max:e}"),
+        }
+        late.insert(model, late_max);
+    }
+    // "Lower damping" of Pinkus–Sternlicht than the Gumbel long bearing (seed 004 §7).
+    assert!(late[&ClosedFormModel::PinkusSternlicht] > 10.0 * late[&ClosedFormModel::LongGumbel]);
+}
+
+/// Seed 004 eq. 16 read literally (prefactor ε̇ < 0 instead of |ε̇|, k > 0) flips the sign of the
+/// wedge force whenever the journal recedes. With it the same transient does not settle on the
+/// equilibrium the paper reports (Fig. 9e); with the |ε̇| reading of
+/// `closed_form::pinkus_sternlicht` it does (test above).
+#[test]
+fn pinkus_sternlicht_as_printed_does_not_reach_the_reported_equilibrium() {
+    let p = params();
+    let printed = |m: &JournalMotion| {
+        let eps = m.eccentricity_ratio;
+        let ed = m.eccentricity_ratio_rate;
+        let wp = m.wedge_speed();
+        let (s, a) = (1.0 - eps * eps, 2.0 + eps * eps);
+        let scale = p.long_scale();
+        let [fr, ft] = if ed == 0.0 || eps == 0.0 {
+            let f = film_force(ClosedFormModel::PinkusSternlicht, &p, m).unwrap();
+            [f.radial, f.tangential]
+        } else {
+            let k = (s * ((wp / (2.0 * ed)).powi(2) + 1.0 / (eps * eps))).sqrt();
+            let (br, rt) = if ed > 0.0 {
+                (
+                    4.0 * k * eps * eps + a * PI * (k + 3.0) / (k + 1.5),
+                    (k + 3.0) / (k + 1.5),
+                )
+            } else {
+                (4.0 * k * eps * eps - a * PI * k / (k + 1.5), k / (k + 1.5))
+            };
+            [
+                -scale * 6.0 * ed / (a * s.powf(1.5)) * br,
+                scale * 6.0 * PI * eps * wp / (a * s.sqrt()) * rt,
+            ]
+        };
+        let g = m.line_of_centres_angle;
+        [fr * g.cos() - ft * g.sin(), fr * g.sin() + ft * g.cos()]
+    };
+    let eq = solve(ClosedFormModel::PinkusSternlicht).eccentricity_ratio_vector;
+    let d0 = eq[0].hypot(eq[1]);
+    match transient(printed, eq, 1.5) {
+        Ok((s, late_max)) => {
+            println!(
+                "printed eq. 16: final ε = ({:.5}, {:.5}), late max distance {late_max:.3e}",
+                s[0], s[1]
+            );
+            assert!(
+                late_max > 1e-2 * d0,
+                "the literal eq. 16 settled: {late_max:e}"
+            );
+        }
+        Err(e) => println!("printed eq. 16: {e}"),
+    }
 }

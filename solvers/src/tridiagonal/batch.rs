@@ -60,7 +60,7 @@
 //! (This would break only under a target whose scalar and vector arithmetic differ, such as x87,
 //! which Rust's x86-64 targets do not use.)
 
-use super::{LineWorkspace, TridiagonalError, cyclic_thomas_solve, pivot_ok};
+use super::{FLUSH_RTOL, LineWorkspace, TridiagonalError, cyclic_thomas_solve, flush, pivot_ok};
 
 /// Number of lines solved together in one chunk (SIMD lanes of the batched kernels).
 pub const LANES: usize = 8;
@@ -458,12 +458,16 @@ impl ChunkKernel for Periodic<'_> {
         store(f, 0, &f_prev);
         store(x, l0, &y_prev);
         // Last row, fused: remove its column-0 entry A_0 = a_{m-1} with row 0.
-        let mut carried: [f64; L] = bt.row(bt.sup, last, l0);
+        let b_last: [f64; L] = bt.row(bt.sub, last, l0);
         let d_last: [f64; L] = bt.row(bt.diag, last, l0);
+        let a_last: [f64; L] = bt.row(bt.sup, last, l0);
         let c_last: [f64; L] = bt.row(bt.rhs, last, l0);
+        let scale_last = lanes::<L>(|k| b_last[k].abs() + d_last[k].abs() + a_last[k].abs());
+        let carried_tol = lanes::<L>(|k| FLUSH_RTOL * scale_last[k]);
+        let mut carried = a_last;
         let mut d_star = lanes::<L>(|k| d_last[k] - carried[k] * f_prev[k]);
         let mut c_star = lanes::<L>(|k| c_last[k] - carried[k] * y_prev[k]);
-        carried = lanes::<L>(|k| -carried[k] * u_prev[k]);
+        carried = lanes::<L>(|k| flush(-carried[k] * u_prev[k], carried_tol[k]));
 
         // Rows 1 … m-3.
         for i in 1..last - 1 {
@@ -476,14 +480,14 @@ impl ChunkKernel for Periodic<'_> {
             check::<L, LOCATE>(&mut ok, &pivot, &scale, l0, i)?;
             let r = lanes::<L>(|k| 1.0 / pivot[k]);
             u_prev = lanes::<L>(|k| a[k] * r[k]);
-            f_prev = lanes::<L>(|k| -(b[k] * f_prev[k]) * r[k]);
+            f_prev = lanes::<L>(|k| flush(-(b[k] * f_prev[k]) * r[k], FLUSH_RTOL));
             y_prev = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
             store(u, i * L, &u_prev);
             store(f, i * L, &f_prev);
             store(x, i * lines + l0, &y_prev);
             d_star = lanes::<L>(|k| d_star[k] - carried[k] * f_prev[k]);
             c_star = lanes::<L>(|k| c_star[k] - carried[k] * y_prev[k]);
-            carried = lanes::<L>(|k| -carried[k] * u_prev[k]);
+            carried = lanes::<L>(|k| flush(-carried[k] * u_prev[k], carried_tol[k]));
         }
 
         // Row m-2: its super-diagonal entry lies in the fill-in column m-1.
@@ -499,13 +503,10 @@ impl ChunkKernel for Periodic<'_> {
         let f_m2 = lanes::<L>(|k| (a[k] - b[k] * f_prev[k]) * r[k]);
         let y_m2 = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
         // The last row's column m-2 holds b_{m-1} besides the carried entry.
-        let b_last: [f64; L] = bt.row(bt.sub, last, l0);
         carried = lanes::<L>(|k| carried[k] + b_last[k]);
         d_star = lanes::<L>(|k| d_star[k] - carried[k] * f_m2[k]);
         c_star = lanes::<L>(|k| c_star[k] - carried[k] * y_m2[k]);
-        let a_last: [f64; L] = bt.row(bt.sup, last, l0);
-        let scale = lanes::<L>(|k| b_last[k].abs() + d_last[k].abs() + a_last[k].abs());
-        check::<L, LOCATE>(&mut ok, &d_star, &scale, l0, last)?;
+        check::<L, LOCATE>(&mut ok, &d_star, &scale_last, l0, last)?;
         if ok.contains(&false) {
             return Err(ChunkError::Pivot(ok.map(|o| !o)));
         }

@@ -1,0 +1,97 @@
+//! Reynolds-solver benches (one core).
+//!
+//! - `reynolds/cold_steady/<grid>`: a steady film from a cold start (full film at ambient) at
+//!   the default grid 120 × 31 (29 axial cells) and at 2× (240 × 60) and 4× (480 × 118)
+//!   refinement in each direction: L/D = 1, ε = 0.6, the Butenschön problem (supply line at h_max), ADI-Krylov.
+//! - `reynolds/cold_steady_lu/120x31`: the same with the sparse-LU oracle, for comparison.
+//! - `reynolds/warm_step/120x31`: one backward-Euler step of a grooved bearing whirling at
+//!   ε = 0.6 (1° of whirl per step), warm-started from the previous step's film.
+use criterion::Criterion;
+use jbearing_solvers::reynolds::{
+    GridParams, Groove, LinearSolver, OperatingConditions, ReynoldsParams, ReynoldsSolver,
+    StepInput, SupplyModel,
+};
+use std::hint::black_box;
+
+fn steady_solver(grid: GridParams, linear: LinearSolver) -> ReynoldsSolver {
+    let mut p = ReynoldsParams::plain(0.05, 0.1, 50e-6, 0.01);
+    p.supply = SupplyModel::AxialLineAtMaxGap;
+    p.grid = grid;
+    p.linear_solver = linear;
+    ReynoldsSolver::new(p).expect("params")
+}
+
+pub fn bench(c: &mut Criterion) {
+    let cond = OperatingConditions {
+        journal_speed: 100.0,
+        bearing_speed: 0.0,
+        feed_pressures: vec![],
+    };
+    let mut group = c.benchmark_group("reynolds");
+    for (nt, nz) in [(120, 31), (240, 60), (480, 118)] {
+        let mut s = steady_solver(
+            GridParams {
+                n_theta: nt,
+                n_z: nz,
+            },
+            LinearSolver::AdiKrylov,
+        );
+        group.bench_function(format!("cold_steady/{nt}x{nz}"), |b| {
+            b.iter(|| {
+                black_box(
+                    s.solve_steady(black_box([0.6, 0.0]), &cond)
+                        .expect("steady"),
+                )
+            })
+        });
+    }
+    let mut s = steady_solver(GridParams::default(), LinearSolver::SparseLu);
+    group.bench_function("cold_steady_lu/120x31", |b| {
+        b.iter(|| {
+            black_box(
+                s.solve_steady(black_box([0.6, 0.0]), &cond)
+                    .expect("steady"),
+            )
+        })
+    });
+
+    // Warm step: grooved bearing, whirl at ε = 0.6, 1° of whirl per step.
+    let mut p = ReynoldsParams::plain(0.05, 0.1, 50e-6, 0.01);
+    p.grooves = vec![Groove {
+        center_angle: std::f64::consts::PI,
+        center_z: 0.0,
+        angular_width: 0.2,
+        axial_width: 0.03,
+        cutoff_film_fraction: 0.01,
+    }];
+    let mut s = ReynoldsSolver::new(p).expect("params");
+    let cond = OperatingConditions {
+        journal_speed: 100.0,
+        bearing_speed: 0.0,
+        feed_pressures: vec![2e5],
+    };
+    let whirl = 30.0;
+    let dt = 1f64.to_radians() / whirl;
+    let eps = |n: usize| {
+        let a = whirl * dt * n as f64;
+        [0.6 * a.cos(), 0.6 * a.sin()]
+    };
+    let mut state = s.initial_state(eps(0));
+    for n in 1..=360 {
+        let input = StepInput {
+            eccentricity_ratio: eps(n),
+            dt,
+            conditions: cond.clone(),
+        };
+        state = s.solve_step(&state, &input).expect("run-in").1;
+    }
+    let input = StepInput {
+        eccentricity_ratio: eps(361),
+        dt,
+        conditions: cond.clone(),
+    };
+    group.bench_function("warm_step/120x31", |b| {
+        b.iter(|| black_box(s.solve_step(black_box(&state), &input).expect("step")))
+    });
+    group.finish();
+}

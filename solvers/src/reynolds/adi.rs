@@ -1,0 +1,327 @@
+//! The iterative solve of one frozen-switch system: ADI line sweeps as the preconditioner of a
+//! restarted flexible GMRES, with a coarse line-aggregate correction.
+//!
+//! # Why not plain ADI sweeps
+//!
+//! With the physical bulk modulus the full-film rows are a stiff, nearly incompressible pressure
+//! (Poisson-type) operator. A line sweep solves its own direction exactly but lags the other
+//! one; for an error mode that is smooth in both θ and z the lagged part is almost all of the
+//! operator, so stationary ADI sweeps converge like 1 − O(Δ²) per sweep (design.md §3: "a
+//! single ADI pass per time step is not a converged solution"). Two remedies, both cheap:
+//!
+//! 1. **Coarse correction (additive correction, Settari & Aziz 1973).** Aggregate each axial
+//!    line's unknowns into one: restriction R sums the rows of line i, prolongation P puts a
+//!    constant on the line's unknowns (0 on Dirichlet nodes). The Galerkin operator R A P of the
+//!    five-point stencil couples line i with i ± 1 only and is periodic in θ:
+//!
+//!    ```text
+//!      C_i δ_i + C^w_i δ_{i−1} + C^e_i δ_{i+1} = Σ_j r_ij
+//!      C_i  = Σ_j s_ij (p_ij s_ij + s_ij^S s_{i,j−1} + n_ij s_{i,j+1}),
+//!      C^w_i = Σ_j s_ij w_ij s_{i−1,j},   C^e_i = Σ_j s_ij e_ij s_{i+1,j}
+//!    ```
+//!
+//!    a cyclic tridiagonal line solved with Yu & Sawicki's modified Thomas kernel.
+//! 2. **Krylov acceleration.** One application of the preconditioner M⁻¹ r is
+//!
+//!    ```text
+//!      x  = P C⁻¹ R r                        (coarse)
+//!      x += A_θ⁻¹ (r − A x)                  (all circumferential lines, cyclic kernel,
+//!                                             batched across lines; z-neighbours lagged)
+//!      x += A_z⁻¹ (r − A x)                  (all axial lines, Thomas; θ-neighbours lagged)
+//!    ```
+//!
+//!    and restarted flexible GMRES (Saad 1993) iterates on A M⁻¹ until the discrete mass
+//!    residual max_k |r_k| is below `tolerance ×` the flux scale (max over rows of Σ|A_kl ψ_l|).
+//!
+//! The switch g is frozen during this solve and updated in the outer loop (`mod.rs`), which
+//! repeats until no node changes state. Every pivot is checked by the line kernels; a failure
+//! is an error naming the line, never a NaN.
+
+use super::ReynoldsError;
+use super::discretization::Stencil;
+use super::grid::{Grid, NodeKind};
+use crate::tridiagonal::{
+    BatchWorkspace, LineWorkspace, cyclic_thomas_solve, cyclic_thomas_solve_interleaved,
+    thomas_solve,
+};
+
+/// Krylov subspace size before a restart.
+const RESTART: usize = 24;
+
+/// Scratch memory of the ADI-Krylov solve, reused across solves (no allocation when warm).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct AdiWorkspace {
+    r: Vec<f64>,
+    t: Vec<f64>,
+    y: Vec<f64>,
+    v: Vec<Vec<f64>>,
+    z: Vec<Vec<f64>>,
+    hess: Vec<f64>,
+    cs: Vec<f64>,
+    sn: Vec<f64>,
+    gvec: Vec<f64>,
+    mask: Vec<f64>,
+    coarse: [Vec<f64>; 5],
+    batch: BatchWorkspace,
+    line: LineWorkspace,
+}
+
+/// Result of one frozen-switch iterative solve.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct KrylovInfo {
+    pub iterations: usize,
+    pub residual: f64,
+}
+
+impl AdiWorkspace {
+    fn ensure(&mut self, n: usize, nt: usize) {
+        if self.r.len() != n {
+            self.r = vec![0.0; n];
+            self.t = vec![0.0; n];
+            self.y = vec![0.0; n];
+            self.mask = vec![0.0; n];
+            self.v = vec![vec![0.0; n]; RESTART + 1];
+            self.z = vec![vec![0.0; n]; RESTART];
+        }
+        if self.coarse[0].len() != nt {
+            for c in &mut self.coarse {
+                *c = vec![0.0; nt];
+            }
+        }
+        if self.hess.len() != (RESTART + 1) * RESTART {
+            self.hess = vec![0.0; (RESTART + 1) * RESTART];
+            self.cs = vec![0.0; RESTART];
+            self.sn = vec![0.0; RESTART];
+            self.gvec = vec![0.0; RESTART + 1];
+        }
+    }
+}
+
+fn line_error(direction: &'static str, e: crate::tridiagonal::TridiagonalError) -> ReynoldsError {
+    ReynoldsError::LinearSolve {
+        solver: "ADI line sweep",
+        detail: format!("{direction} line: {e}"),
+    }
+}
+
+/// Builds the coarse (line-aggregate) operator into `ws.coarse[0..3]` = (w, diag, e).
+fn build_coarse(grid: &Grid, st: &Stencil, ws: &mut AdiWorkspace) {
+    let (nt, nz) = (grid.n_theta, grid.n_z);
+    for k in 0..grid.len() {
+        ws.mask[k] = if grid.kind[k] == NodeKind::Unknown {
+            1.0
+        } else {
+            0.0
+        };
+    }
+    let m = &ws.mask;
+    for i in 0..nt {
+        let iw = if i == 0 { nt - 1 } else { i - 1 };
+        let ie = if i + 1 == nt { 0 } else { i + 1 };
+        let (mut cw, mut cd, mut ce) = (0.0, 0.0, 0.0);
+        for j in 1..nz - 1 {
+            let k = i * nz + j;
+            if m[k] == 0.0 {
+                continue;
+            }
+            cd += st.p[k] + st.s[k] * m[k - 1] + st.n[k] * m[k + 1];
+            cw += st.w[k] * m[iw * nz + j];
+            ce += st.e[k] * m[ie * nz + j];
+        }
+        if cd == 0.0 && cw == 0.0 && ce == 0.0 {
+            cd = 1.0;
+        }
+        ws.coarse[0][i] = cw;
+        ws.coarse[1][i] = cd;
+        ws.coarse[2][i] = ce;
+    }
+}
+
+/// x = M⁻¹ r (see the module docs). Uses `ws.t`, `ws.y`, `ws.coarse[3..5]`.
+fn precondition(
+    grid: &Grid,
+    st: &Stencil,
+    r: &[f64],
+    x: &mut [f64],
+    ws: &mut AdiWorkspace,
+) -> Result<(), ReynoldsError> {
+    let (nt, nz) = (grid.n_theta, grid.n_z);
+    let n = grid.len();
+    // Coarse: δ = C⁻¹ R r, x = P δ.
+    {
+        let [cw, cd, ce, crhs, cx] = &mut ws.coarse;
+        for i in 0..nt {
+            let mut s = 0.0;
+            for j in 1..nz - 1 {
+                let k = i * nz + j;
+                s += ws.mask[k] * r[k];
+            }
+            crhs[i] = s;
+        }
+        cyclic_thomas_solve(cw, cd, ce, crhs, cx, &mut ws.line)
+            .map_err(|e| line_error("coarse (line-aggregate)", e))?;
+        for i in 0..nt {
+            for j in 0..nz {
+                let k = i * nz + j;
+                x[k] = ws.mask[k] * cx[i];
+            }
+        }
+    }
+    // Circumferential lines (interleaved: line j, unknown i at i·n_z + j).
+    st.apply(grid, x, &mut ws.t);
+    for k in 0..n {
+        ws.t[k] = r[k] - ws.t[k];
+    }
+    cyclic_thomas_solve_interleaved(nt, nz, &st.w, &st.p, &st.e, &ws.t, &mut ws.y, &mut ws.batch)
+        .map_err(|e| line_error("circumferential", e))?;
+    for k in 0..n {
+        x[k] += ws.y[k];
+    }
+    // Axial lines (contiguous).
+    st.apply(grid, x, &mut ws.t);
+    for k in 0..n {
+        ws.t[k] = r[k] - ws.t[k];
+    }
+    for i in 0..nt {
+        let a = i * nz;
+        let b = a + nz;
+        thomas_solve(
+            &st.s[a..b],
+            &st.p[a..b],
+            &st.n[a..b],
+            &ws.t[a..b],
+            &mut ws.y[a..b],
+            &mut ws.line,
+        )
+        .map_err(|e| line_error("axial", e))?;
+    }
+    for k in 0..n {
+        x[k] += ws.y[k];
+    }
+    Ok(())
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Solves A x = rhs for the frozen switch, starting from the `x` given (warm start), to
+/// max |r| ≤ `tolerance` × flux scale.
+pub(crate) fn solve_krylov(
+    grid: &Grid,
+    st: &Stencil,
+    x: &mut [f64],
+    tolerance: f64,
+    max_iterations: usize,
+    ws: &mut AdiWorkspace,
+) -> Result<KrylovInfo, ReynoldsError> {
+    let n = grid.len();
+    ws.ensure(n, grid.n_theta);
+    build_coarse(grid, st, ws);
+    let mut iterations = 0;
+    loop {
+        let mut r = std::mem::take(&mut ws.r);
+        let (rmax, scale) = st.residual(grid, x, &mut r);
+        if !rmax.is_finite() {
+            ws.r = r;
+            return Err(ReynoldsError::LinearSolve {
+                solver: "ADI-Krylov",
+                detail: format!("residual not finite after {iterations} iterations"),
+            });
+        }
+        let target = tolerance * scale;
+        if rmax <= target || scale == 0.0 {
+            ws.r = r;
+            return Ok(KrylovInfo {
+                iterations,
+                residual: if scale > 0.0 { rmax / scale } else { 0.0 },
+            });
+        }
+        if iterations >= max_iterations {
+            ws.r = r;
+            return Err(ReynoldsError::LinearNotConverged {
+                iterations,
+                residual: rmax / scale,
+                tolerance,
+            });
+        }
+        // One GMRES cycle.
+        let beta = dot(&r, &r).sqrt();
+        for (vk, rk) in ws.v[0].iter_mut().zip(&r) {
+            *vk = rk / beta;
+        }
+        ws.r = r;
+        ws.gvec.iter_mut().for_each(|g| *g = 0.0);
+        ws.gvec[0] = beta;
+        let mut used = 0;
+        for jj in 0..RESTART {
+            let mut zj = std::mem::take(&mut ws.z[jj]);
+            let vj = std::mem::take(&mut ws.v[jj]);
+            precondition(grid, st, &vj, &mut zj, ws)?;
+            ws.v[jj] = vj;
+            let mut w = std::mem::take(&mut ws.v[jj + 1]);
+            st.apply(grid, &zj, &mut w);
+            ws.z[jj] = zj;
+            // Modified Gram–Schmidt.
+            for ii in 0..=jj {
+                let hij = dot(&w, &ws.v[ii]);
+                ws.hess[ii * RESTART + jj] = hij;
+                for (wk, vk) in w.iter_mut().zip(&ws.v[ii]) {
+                    *wk -= hij * vk;
+                }
+            }
+            let hnorm = dot(&w, &w).sqrt();
+            ws.hess[(jj + 1) * RESTART + jj] = hnorm;
+            if hnorm > 0.0 {
+                for wk in w.iter_mut() {
+                    *wk /= hnorm;
+                }
+            }
+            ws.v[jj + 1] = w;
+            // Givens rotations.
+            for ii in 0..jj {
+                let (a, b) = (ws.hess[ii * RESTART + jj], ws.hess[(ii + 1) * RESTART + jj]);
+                ws.hess[ii * RESTART + jj] = ws.cs[ii] * a + ws.sn[ii] * b;
+                ws.hess[(ii + 1) * RESTART + jj] = -ws.sn[ii] * a + ws.cs[ii] * b;
+            }
+            let (a, b) = (ws.hess[jj * RESTART + jj], ws.hess[(jj + 1) * RESTART + jj]);
+            let d = a.hypot(b);
+            let (c, s) = if d == 0.0 { (1.0, 0.0) } else { (a / d, b / d) };
+            ws.cs[jj] = c;
+            ws.sn[jj] = s;
+            ws.hess[jj * RESTART + jj] = d;
+            ws.hess[(jj + 1) * RESTART + jj] = 0.0;
+            ws.gvec[jj + 1] = -s * ws.gvec[jj];
+            ws.gvec[jj] *= c;
+            used = jj + 1;
+            iterations += 1;
+            if !ws.gvec[jj + 1].is_finite() {
+                return Err(ReynoldsError::LinearSolve {
+                    solver: "ADI-Krylov",
+                    detail: format!("Krylov residual not finite at iteration {iterations}"),
+                });
+            }
+            // ‖r‖∞ ≤ ‖r‖₂: stop the cycle once the 2-norm estimate is below the target.
+            if ws.gvec[jj + 1].abs() <= 0.5 * target || hnorm == 0.0 {
+                break;
+            }
+            if iterations >= max_iterations {
+                break;
+            }
+        }
+        // Back substitution for y, then x += Z y.
+        let mut yv = [0.0; RESTART];
+        for ii in (0..used).rev() {
+            let mut s = ws.gvec[ii];
+            for kk in ii + 1..used {
+                s -= ws.hess[ii * RESTART + kk] * yv[kk];
+            }
+            yv[ii] = s / ws.hess[ii * RESTART + ii];
+        }
+        for (ii, &yi) in yv.iter().enumerate().take(used) {
+            for (xk, zk) in x.iter_mut().zip(&ws.z[ii]) {
+                *xk += yi * zk;
+            }
+        }
+    }
+}

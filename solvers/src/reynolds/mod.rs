@@ -1,0 +1,809 @@
+//! The universal Reynolds equation (Elrod–Adams / Vijayaraghavan, mass-conserving JFO
+//! cavitation) for a rigid journal bearing: pressure, cavitation, load, flows and power loss for
+//! a given journal position, velocity, speeds and feed.
+//!
+//! # What is solved
+//!
+//! ```text
+//!   ∂(hφ)/∂t + ∂/∂x [ U h φ / 2 − (β h³/12μ) ∂(g(φ−1))/∂x ] + ∂/∂z [ −(β h³/12μ) ∂(g(φ−1))/∂z ] = 0
+//!   p = p_cav + g β (φ − 1),   g = 1 (φ ≥ 1, full film) | 0 (φ < 1, film fraction φ)
+//! ```
+//!
+//! (design.md §2; Elrod 1981; Vijayaraghavan & Keith 1989; Yu & Sawicki 2002 eq. 3 with g
+//! inside the derivative), x = Rθ, U = R(ω_j − ω_b), h = c − e_x cos θ − e_y sin θ
+//! (design.md §1), periodic in θ, p = p_amb at z = ±L/2, grooves fixed in the bearing frame held
+//! at their feed pressure or, when p_feed ≤ p_cav, at a cavitated state of given film fraction
+//! (supply cut-off, Yu & Sawicki Fig. 4 use φ = 0.01).
+//!
+//! # Modules
+//! - [`grid`](self::grid): θ × z nodes, storage `k = i·n_z + j`, node classes (diagram there).
+//! - [`film`](self::film): h at nodes and faces.
+//! - [`discretization`](self::discretization): the conservative five-point scheme, its face
+//!   fluxes (Couette type differencing, pressure flux through gψ) and the frozen-switch
+//!   linear system.
+//! - [`adi`](self::adi): ADI line sweeps (cyclic kernel on circumferential lines, Thomas on
+//!   axial lines) + line-aggregate coarse correction, as the preconditioner of FGMRES.
+//! - [`oracle`](self::oracle): the sparse-LU (faer) solve of the same system, g frozen.
+//! - [`outputs`](self::outputs): force, attitude, h_min, p_max, cavitated fraction, side
+//!   leakage, supply flow, friction torques, power loss.
+//! - [`steady_load`](self::steady_load): Newton on the two eccentricity components for a
+//!   constant load.
+//!
+//! # The switch loop
+//!
+//! For a frozen g the discrete equations are linear in ψ = φ − 1. A solve (time step or steady)
+//! starts from the previous state's g (warm) or from a full film at ambient (cold), solves the
+//! frozen system to `tolerance`, sets g = 1 where ψ ≥ 0 and g = 0 where ψ < 0, and repeats until
+//! no node changes state. The converged answer satisfies every discrete mass balance to
+//! `tolerance` × the flux scale and the complementarity of the switch. While g still changes
+//! the frozen systems are solved only to a loose tolerance (10⁴ × `tolerance`, at most 1e-6);
+//! the final, unchanged g is confirmed by a tight solve. (Yu & Sawicki update g
+//! after each half sweep; with the sweeps inside a Krylov method the update moves to the outer
+//! loop, where it cannot spoil the Krylov subspace.)
+//!
+//! Anti-cycling: with the interface faces' differencing depending on g, a node can find no
+//! consistent state (full → ψ < 0, cavitated → ψ > 0) and the loop would cycle. A node that
+//! has changed state `MAX_FLIPS` times is locked full the next time it is full; its pressure
+//! may then lie marginally below p_cav, while every mass balance still holds to `tolerance`.
+//!
+//! # Supply models (design.md §8)
+//!
+//! [`SupplyModel::Grooves`] uses the grooves only. [`SupplyModel::AxialLineAtMaxGap`] adds a
+//! full-length axial line at ambient pressure on the h_max line (opposite the eccentricity),
+//! which is the problem behind the Raimondi–Boyd and Butenschön tables ("the film starts at
+//! the widest gap"); the grid is turned so that node column 0 lies on that line. It is a steady
+//! model: [`ReynoldsSolver::solve_step`] rejects it.
+
+// Stencil code indexes several arrays by the same node number; iterator chains would hide the
+// index maps documented above.
+#![allow(clippy::needless_range_loop)]
+
+mod adi;
+mod discretization;
+mod film;
+mod grid;
+mod oracle;
+mod outputs;
+mod steady_load;
+
+use ndarray::Array2;
+use thiserror::Error;
+
+pub use steady_load::SteadyLoadInfo;
+
+use adi::AdiWorkspace;
+use discretization::{Level, Stencil, TimeTerm};
+use film::FilmThickness;
+use grid::{Grid, NodeKind};
+
+/// A rectangular feed groove or hole, fixed in the bearing frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Groove {
+    /// Angle of its centre, rad (θ from +x towards +y).
+    pub center_angle: f64,
+    /// Axial position of its centre, m (0 = mid-plane).
+    pub center_z: f64,
+    /// Circumferential extent, rad.
+    pub angular_width: f64,
+    /// Axial extent, m.
+    pub axial_width: f64,
+    /// Film fraction held in the groove when its feed pressure is ≤ p_cav (supply cut-off).
+    pub cutoff_film_fraction: f64,
+}
+
+/// Where the oil comes from besides the grooves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SupplyModel {
+    /// Grooves (and the ends, if p_amb > p_cav) only.
+    #[default]
+    Grooves,
+    /// A full-length axial line at ambient pressure on the h_max line (steady solves only):
+    /// the Raimondi–Boyd / Butenschön problem (design.md §8).
+    AxialLineAtMaxGap,
+}
+
+/// Time discretization of [`ReynoldsSolver::solve_step`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TimeScheme {
+    /// Backward Euler (default, L-stable).
+    #[default]
+    BackwardEuler,
+    /// Crank–Nicolson (trapezoidal): no artificial damping of a whirling film.
+    CrankNicolson,
+}
+
+/// Linear solver of the frozen-switch systems.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LinearSolver {
+    /// ADI line sweeps + coarse correction preconditioning FGMRES (default).
+    #[default]
+    AdiKrylov,
+    /// Sparse LU (faer), the test oracle.
+    SparseLu,
+}
+
+/// Grid size: n_theta nodes around (periodic), n_z nodes along including both ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GridParams {
+    pub n_theta: usize,
+    pub n_z: usize,
+}
+
+impl Default for GridParams {
+    /// The default grid, 120 × 31 (justified by the grid-convergence tests in `validation/`).
+    fn default() -> Self {
+        Self {
+            n_theta: 120,
+            n_z: 31,
+        }
+    }
+}
+
+/// Parameters of a [`ReynoldsSolver`] (SI units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReynoldsParams {
+    /// Journal radius R, m.
+    pub radius: f64,
+    /// Bearing length L, m.
+    pub length: f64,
+    /// Radial clearance c, m.
+    pub clearance: f64,
+    /// Dynamic viscosity μ, Pa·s (constant; stored per node inside, see `viscosity_field`).
+    pub viscosity: f64,
+    /// Bulk modulus β, Pa (default 1.5 GPa).
+    pub bulk_modulus: f64,
+    /// Cavitation pressure (gauge), Pa.
+    pub cavitation_pressure: f64,
+    /// Ambient pressure at both ends (gauge), Pa; must be ≥ p_cav.
+    pub ambient_pressure: f64,
+    /// Feed grooves / holes.
+    pub grooves: Vec<Groove>,
+    /// Supply model.
+    pub supply: SupplyModel,
+    pub grid: GridParams,
+    pub time_scheme: TimeScheme,
+    pub linear_solver: LinearSolver,
+    /// Relative tolerance of the discrete mass residual (max |r| / flux scale).
+    pub tolerance: f64,
+    /// Maximum switch (outer) iterations per solve.
+    pub max_switch_iterations: usize,
+    /// Maximum Krylov iterations per frozen-switch solve.
+    pub max_linear_iterations: usize,
+}
+
+impl ReynoldsParams {
+    /// A plain bearing with the defaults: β = 1.5 GPa, p_amb = p_cav = 0, no grooves, default
+    /// grid, backward Euler, ADI-Krylov, tolerance 1e-10.
+    pub fn plain(radius: f64, length: f64, clearance: f64, viscosity: f64) -> Self {
+        Self {
+            radius,
+            length,
+            clearance,
+            viscosity,
+            bulk_modulus: 1.5e9,
+            cavitation_pressure: 0.0,
+            ambient_pressure: 0.0,
+            grooves: Vec::new(),
+            supply: SupplyModel::Grooves,
+            grid: GridParams::default(),
+            time_scheme: TimeScheme::BackwardEuler,
+            linear_solver: LinearSolver::AdiKrylov,
+            tolerance: 1e-10,
+            max_switch_iterations: 200,
+            max_linear_iterations: 400,
+        }
+    }
+}
+
+/// Speeds and feed of one instant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OperatingConditions {
+    /// Journal angular speed ω_j, rad/s.
+    pub journal_speed: f64,
+    /// Bearing (sleeve) angular speed ω_b, rad/s.
+    pub bearing_speed: f64,
+    /// Feed pressure per groove (gauge), Pa, in the order of `ReynoldsParams::grooves`.
+    pub feed_pressures: Vec<f64>,
+}
+
+/// One time step: the new eccentricity, the step length and the conditions at the new time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepInput {
+    pub eccentricity_ratio: [f64; 2],
+    pub dt: f64,
+    pub conditions: OperatingConditions,
+}
+
+/// The film at one time level: eccentricity and the φ / g fields (`[n_theta, n_z]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilmState {
+    pub eccentricity_ratio: [f64; 2],
+    /// φ = ρ/ρ_c (full film, ≥ 1) or film fraction (cavitated, < 1).
+    pub density_ratio: Array2<f64>,
+    /// g: true where the film is full.
+    pub full_film: Array2<bool>,
+    /// Net outflow of each node at this level, m³/s (Crank–Nicolson needs it; None: the next
+    /// step falls back to backward Euler once).
+    pub net_outflow: Option<Array2<f64>>,
+}
+
+/// Everything a solve returns (SI units; angles in rad; locations as (θ, z)).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilmSolution {
+    /// Film force on the journal F = −∫∫ (p − p_amb) n R dθ dz, N (the load W = −F).
+    pub film_force: [f64; 2],
+    /// |F|, N.
+    pub load_capacity: f64,
+    /// Angle from the load W = −F to the eccentricity, positive in the direction of U, rad.
+    pub attitude_angle: f64,
+    pub min_film_thickness: f64,
+    pub min_film_location: [f64; 2],
+    /// Largest gauge pressure, Pa.
+    pub max_pressure: f64,
+    pub max_pressure_location: [f64; 2],
+    /// Area fraction of cavitated nodes.
+    pub cavitated_fraction: f64,
+    /// Oil in the film, Σ V h φ over the unknown nodes, m³ (at cavitation density).
+    pub film_content: f64,
+    /// Outflow at z = −L/2 and z = +L/2, m³/s (mass flux / ρ_c; positive = out).
+    pub side_leakage: [f64; 2],
+    /// Net flow out of each groove into the film, m³/s (negative: back-flow).
+    pub supply_flow: Vec<f64>,
+    /// Net flow out of the axial supply line (AxialLineAtMaxGap), else 0, m³/s.
+    pub supply_line_flow: f64,
+    /// Torque of the film on the journal about +z, N·m (negative: resists U > 0).
+    pub friction_torque_journal: f64,
+    /// Torque of the film on the bearing about +z, N·m.
+    pub friction_torque_bearing: f64,
+    /// Viscous dissipation ∫∫ [μU²f/h + h³/(12μ)|∇p|²] dA, W (design.md §5).
+    pub power_loss: f64,
+    /// Switch (outer) iterations.
+    pub iterations: usize,
+    /// Krylov iterations summed over the switch iterations.
+    pub linear_iterations: usize,
+    /// Final relative discrete mass residual.
+    pub residual: f64,
+    /// θ of the grid columns (rad) and z of the rows (m).
+    pub theta: Vec<f64>,
+    pub z: Vec<f64>,
+    /// Gauge pressure, Pa.
+    pub pressure: Array2<f64>,
+    /// φ (density ratio where full, film fraction where cavitated).
+    pub density_ratio: Array2<f64>,
+    /// Film fraction: 1 where full, φ where cavitated.
+    pub film_fraction: Array2<f64>,
+    /// Switch g (1 full, 0 cavitated).
+    pub switch: Array2<f64>,
+}
+
+/// Why a solve failed; variants carry the numbers.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ReynoldsError {
+    #[error("invalid parameter {name} = {value:e}: {reason}")]
+    InvalidParameter {
+        name: &'static str,
+        value: f64,
+        reason: &'static str,
+    },
+    #[error(
+        "mass-conserving film without any supply: p_amb = {ambient_pressure:e} Pa ≤ p_cav = \
+         {cavitation_pressure:e} Pa and no groove or supply line (the film would be empty)"
+    )]
+    NoSupply {
+        ambient_pressure: f64,
+        cavitation_pressure: f64,
+    },
+    #[error("{got} feed pressures given for {expected} grooves")]
+    FeedPressureCount { expected: usize, got: usize },
+    #[error("eccentricity ratio |ε| = {magnitude} is outside [0, 1)")]
+    EccentricityOutOfRange { magnitude: f64 },
+    #[error("{what}")]
+    Unsupported { what: &'static str },
+    #[error("{solver}: {detail}")]
+    LinearSolve {
+        solver: &'static str,
+        detail: String,
+    },
+    #[error(
+        "frozen-switch solve not converged after {iterations} Krylov iterations: residual \
+         {residual:e} > tolerance {tolerance:e}"
+    )]
+    LinearNotConverged {
+        iterations: usize,
+        residual: f64,
+        tolerance: f64,
+    },
+    #[error(
+        "switch loop not converged after {iterations} iterations: {changed_nodes} nodes still \
+         change state (first at θ index {theta_index}, z index {z_index}), residual {residual:e}"
+    )]
+    SwitchNotConverged {
+        iterations: usize,
+        changed_nodes: usize,
+        theta_index: usize,
+        z_index: usize,
+        residual: f64,
+    },
+    #[error(
+        "{what} not finite at θ index {theta_index}, z index {z_index} (iteration {iteration})"
+    )]
+    NonFinite {
+        what: &'static str,
+        theta_index: usize,
+        z_index: usize,
+        iteration: usize,
+    },
+    #[error(
+        "negative film content φ = {value} at θ index {theta_index}, z index {z_index} (time step \
+         too long for the squeeze, or a starved film)"
+    )]
+    NegativeFilmFraction {
+        value: f64,
+        theta_index: usize,
+        z_index: usize,
+    },
+    #[error(
+        "steady load solve not converged after {iterations} Newton iterations: force residual \
+         {force_residual:e} N at ε = ({eps_x}, {eps_y})",
+        eps_x = eccentricity_ratio[0], eps_y = eccentricity_ratio[1]
+    )]
+    SteadyLoadNotConverged {
+        iterations: usize,
+        force_residual: f64,
+        eccentricity_ratio: [f64; 2],
+    },
+}
+
+/// The converged discrete film of one solve (crate internal).
+pub(crate) struct Core {
+    grid: Grid,
+    h: Vec<f64>,
+    psi: Vec<f64>,
+    g: Vec<f64>,
+    flux_theta: Vec<f64>,
+    flux_z: Vec<f64>,
+    iterations: usize,
+    linear_iterations: usize,
+    residual: f64,
+}
+
+/// The solver: parameters plus reusable workspaces (grid, stencil, ADI scratch).
+#[derive(Debug, Clone)]
+pub struct ReynoldsSolver {
+    params: ReynoldsParams,
+    grid: Grid,
+    stencil: Stencil,
+    ws: AdiWorkspace,
+    /// μ per node (constant now; a field μ(θ, z) can be stored here later).
+    viscosity_field: Vec<f64>,
+    k_theta: Vec<f64>,
+    k_z: Vec<f64>,
+    dirichlet: Vec<f64>,
+}
+
+impl ReynoldsSolver {
+    pub fn new(params: ReynoldsParams) -> Result<Self, ReynoldsError> {
+        let positive = [
+            ("radius", params.radius),
+            ("length", params.length),
+            ("clearance", params.clearance),
+            ("viscosity", params.viscosity),
+            ("bulk_modulus", params.bulk_modulus),
+            ("tolerance", params.tolerance),
+        ];
+        for (name, value) in positive {
+            if !(value > 0.0 && value.is_finite()) {
+                return Err(ReynoldsError::InvalidParameter {
+                    name,
+                    value,
+                    reason: "must be positive and finite",
+                });
+            }
+        }
+        if params.ambient_pressure < params.cavitation_pressure || params.ambient_pressure.is_nan()
+        {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "ambient_pressure",
+                value: params.ambient_pressure,
+                reason: "must be ≥ cavitation_pressure",
+            });
+        }
+        for g in &params.grooves {
+            if !(g.cutoff_film_fraction > 0.0 && g.cutoff_film_fraction < 1.0) {
+                return Err(ReynoldsError::InvalidParameter {
+                    name: "cutoff_film_fraction",
+                    value: g.cutoff_film_fraction,
+                    reason: "must lie in (0, 1)",
+                });
+            }
+        }
+        if params.ambient_pressure <= params.cavitation_pressure
+            && params.grooves.is_empty()
+            && params.supply == SupplyModel::Grooves
+        {
+            return Err(ReynoldsError::NoSupply {
+                ambient_pressure: params.ambient_pressure,
+                cavitation_pressure: params.cavitation_pressure,
+            });
+        }
+        let grid = Grid::new(&params, 0.0)?;
+        let n = grid.len();
+        Ok(Self {
+            viscosity_field: vec![params.viscosity; n],
+            params,
+            grid,
+            stencil: Stencil::default(),
+            ws: AdiWorkspace::default(),
+            k_theta: vec![0.0; n],
+            k_z: vec![0.0; n],
+            dirichlet: vec![0.0; n],
+        })
+    }
+
+    pub fn params(&self) -> &ReynoldsParams {
+        &self.params
+    }
+
+    /// θ of the grid columns for the grid of time-stepped solves (θ_0 = 0).
+    pub fn theta_nodes(&self) -> Vec<f64> {
+        (0..self.params.grid.n_theta)
+            .map(|i| i as f64 * 2.0 * std::f64::consts::PI / self.params.grid.n_theta as f64)
+            .collect()
+    }
+
+    /// A full film at ambient pressure (φ = 1 + (p_amb − p_cav)/β, g = 1) at ε.
+    pub fn initial_state(&self, eccentricity_ratio: [f64; 2]) -> FilmState {
+        let GridParams { n_theta, n_z } = self.params.grid;
+        let psi = (self.params.ambient_pressure - self.params.cavitation_pressure)
+            / self.params.bulk_modulus;
+        FilmState {
+            eccentricity_ratio,
+            density_ratio: Array2::from_elem((n_theta, n_z), 1.0 + psi),
+            full_film: Array2::from_elem((n_theta, n_z), true),
+            net_outflow: None,
+        }
+    }
+
+    /// One implicit time step from `state` (ε and φ at t_n) to `input.eccentricity_ratio` at
+    /// t_n + dt. The squeeze enters through h at both levels (design.md §2).
+    pub fn solve_step(
+        &mut self,
+        state: &FilmState,
+        input: &StepInput,
+    ) -> Result<(FilmSolution, FilmState), ReynoldsError> {
+        if self.params.supply != SupplyModel::Grooves {
+            return Err(ReynoldsError::Unsupported {
+                what: "solve_step: the axial supply line at h_max is a steady model (use SupplyModel::Grooves)",
+            });
+        }
+        if !(input.dt > 0.0 && input.dt.is_finite()) {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "dt",
+                value: input.dt,
+                reason: "must be positive and finite",
+            });
+        }
+        let n = self.grid.len();
+        if state.density_ratio.len() != n || state.full_film.len() != n {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "state",
+                value: state.density_ratio.len() as f64,
+                reason: "state fields do not match the grid size",
+            });
+        }
+        check_eps(state.eccentricity_ratio)?;
+        self.set_grid(0.0)?;
+        let old_h = FilmThickness::new(&self.grid, self.params.clearance, state.eccentricity_ratio);
+        let old_content: Vec<f64> = old_h
+            .node
+            .iter()
+            .zip(state.density_ratio.iter())
+            .map(|(h, phi)| h * phi)
+            .collect();
+        let old_outflow: Option<Vec<f64>> = match self.params.time_scheme {
+            TimeScheme::CrankNicolson => state
+                .net_outflow
+                .as_ref()
+                .map(|a| a.iter().copied().collect()),
+            TimeScheme::BackwardEuler => None,
+        };
+        let psi0: Vec<f64> = state.density_ratio.iter().map(|phi| phi - 1.0).collect();
+        let g0: Vec<f64> = state
+            .full_film
+            .iter()
+            .map(|&f| if f { 1.0 } else { 0.0 })
+            .collect();
+        let time = TimeTerm::Step {
+            dt: input.dt,
+            old_content: &old_content,
+            old_outflow: old_outflow.as_deref(),
+        };
+        let core = self.solve_core(
+            input.eccentricity_ratio,
+            &input.conditions,
+            time,
+            Some((psi0, g0)),
+        )?;
+        let sol = outputs::film_solution(
+            &self.params,
+            &input.conditions,
+            input.eccentricity_ratio,
+            &core,
+            &self.viscosity_field,
+        );
+        let mut out = vec![0.0; n];
+        discretization::net_outflow(&core.grid, &core.flux_theta, &core.flux_z, &mut out);
+        let shape = (self.params.grid.n_theta, self.params.grid.n_z);
+        let new_state = FilmState {
+            eccentricity_ratio: input.eccentricity_ratio,
+            density_ratio: Array2::from_shape_vec(
+                shape,
+                core.psi.iter().map(|p| 1.0 + p).collect(),
+            )
+            .expect("grid shape"),
+            full_film: Array2::from_shape_vec(shape, core.g.iter().map(|&g| g > 0.5).collect())
+                .expect("grid shape"),
+            net_outflow: Some(Array2::from_shape_vec(shape, out).expect("grid shape")),
+        };
+        Ok((sol, new_state))
+    }
+
+    /// The steady film (no squeeze) at ε, from a cold start.
+    pub fn solve_steady(
+        &mut self,
+        eccentricity_ratio: [f64; 2],
+        conditions: &OperatingConditions,
+    ) -> Result<FilmSolution, ReynoldsError> {
+        let core = self.steady_core(eccentricity_ratio, conditions)?;
+        Ok(outputs::film_solution(
+            &self.params,
+            conditions,
+            eccentricity_ratio,
+            &core,
+            &self.viscosity_field,
+        ))
+    }
+
+    /// The steady eccentricity that carries the constant load `load` (the force the machine
+    /// applies to the journal, N), by Newton on (ε_x, ε_y).
+    pub fn solve_steady_load(
+        &mut self,
+        load: [f64; 2],
+        conditions: &OperatingConditions,
+    ) -> Result<(FilmSolution, SteadyLoadInfo), ReynoldsError> {
+        steady_load::solve(self, load, conditions)
+    }
+
+    fn steady_core(
+        &mut self,
+        eccentricity_ratio: [f64; 2],
+        conditions: &OperatingConditions,
+    ) -> Result<Core, ReynoldsError> {
+        let speed = self.params.radius * (conditions.journal_speed - conditions.bearing_speed);
+        if speed == 0.0 || !speed.is_finite() {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "journal_speed − bearing_speed",
+                value: speed,
+                reason: "a steady film needs a surface speed (a pure squeeze has no steady state)",
+            });
+        }
+        self.solve_core(eccentricity_ratio, conditions, TimeTerm::Steady, None)
+    }
+
+    fn set_grid(&mut self, theta0: f64) -> Result<(), ReynoldsError> {
+        if self.grid.theta0 != theta0
+            || self.grid.len() != self.params.grid.n_theta * self.params.grid.n_z
+        {
+            self.grid = Grid::new(&self.params, theta0)?;
+        }
+        Ok(())
+    }
+
+    /// The switch loop around the frozen-switch linear solves.
+    fn solve_core(
+        &mut self,
+        eps: [f64; 2],
+        conditions: &OperatingConditions,
+        time: TimeTerm,
+        warm: Option<(Vec<f64>, Vec<f64>)>,
+    ) -> Result<Core, ReynoldsError> {
+        check_eps(eps)?;
+        let p = &self.params;
+        if conditions.feed_pressures.len() != p.grooves.len() {
+            return Err(ReynoldsError::FeedPressureCount {
+                expected: p.grooves.len(),
+                got: conditions.feed_pressures.len(),
+            });
+        }
+        for &pf in &conditions.feed_pressures {
+            if !pf.is_finite() {
+                return Err(ReynoldsError::InvalidParameter {
+                    name: "feed_pressures",
+                    value: pf,
+                    reason: "must be finite",
+                });
+            }
+        }
+        let theta0 = match p.supply {
+            SupplyModel::Grooves => 0.0,
+            SupplyModel::AxialLineAtMaxGap => {
+                if eps[0] == 0.0 && eps[1] == 0.0 {
+                    0.0
+                } else {
+                    (-eps[1]).atan2(-eps[0])
+                }
+            }
+        };
+        self.set_grid(theta0)?;
+        let p = &self.params;
+        let grid = &self.grid;
+        let n = grid.len();
+        let h = FilmThickness::new(grid, p.clearance, eps);
+        let beta = p.bulk_modulus;
+        let nz = grid.n_z;
+        for k in 0..n {
+            let ie = (k / nz + 1) % grid.n_theta;
+            let mu_e = 0.5 * (self.viscosity_field[k] + self.viscosity_field[ie * nz + k % nz]);
+            self.k_theta[k] = beta * h.face_theta[k].powi(3) / (12.0 * mu_e);
+            if k % nz + 1 < nz {
+                let hf = 0.5 * (h.node[k] + h.node[k + 1]);
+                let mu_n = 0.5 * (self.viscosity_field[k] + self.viscosity_field[k + 1]);
+                self.k_z[k] = beta * hf.powi(3) / (12.0 * mu_n);
+            } else {
+                self.k_z[k] = 0.0;
+            }
+        }
+        // Dirichlet values and their switch.
+        let psi_amb = (p.ambient_pressure - p.cavitation_pressure) / beta;
+        let (mut psi, mut g) = match warm {
+            Some((psi, g)) => (psi, g),
+            None => (vec![psi_amb.max(0.0); n], vec![1.0; n]),
+        };
+        for k in 0..n {
+            match grid.kind[k] {
+                NodeKind::Unknown => {}
+                NodeKind::End | NodeKind::SupplyLine => {
+                    self.dirichlet[k] = psi_amb;
+                    psi[k] = psi_amb;
+                    g[k] = 1.0;
+                }
+                NodeKind::Groove(gi) => {
+                    let pf = conditions.feed_pressures[gi as usize];
+                    if pf > p.cavitation_pressure {
+                        self.dirichlet[k] = (pf - p.cavitation_pressure) / beta;
+                        g[k] = 1.0;
+                    } else {
+                        self.dirichlet[k] = p.grooves[gi as usize].cutoff_film_fraction - 1.0;
+                        g[k] = 0.0;
+                    }
+                    psi[k] = self.dirichlet[k];
+                }
+            }
+        }
+        let speed = p.radius * (conditions.journal_speed - conditions.bearing_speed);
+        let level = Level {
+            grid,
+            h: &h.node,
+            k_theta: &self.k_theta,
+            k_z: &self.k_z,
+            speed,
+        };
+        let mut linear_iterations = 0;
+        let mut residual;
+        let mut flips = vec![0u8; n];
+        let mut iteration = 0;
+        // Inexact switch loop: while g still changes, the frozen systems are solved to a loose
+        // tolerance; once g stops changing, a tight solve confirms it (and the loop goes on if
+        // that solve changes g after all).
+        let loose = (p.tolerance * 1e4).min(1e-6).max(p.tolerance);
+        let mut tight = p.linear_solver == LinearSolver::SparseLu;
+        loop {
+            iteration += 1;
+            discretization::assemble(&level, &g, &self.dirichlet, time, &mut self.stencil);
+            match p.linear_solver {
+                LinearSolver::AdiKrylov => {
+                    let info = adi::solve_krylov(
+                        grid,
+                        &self.stencil,
+                        &mut psi,
+                        if tight { p.tolerance } else { loose },
+                        p.max_linear_iterations,
+                        &mut self.ws,
+                    )?;
+                    linear_iterations += info.iterations;
+                    residual = info.residual;
+                }
+                LinearSolver::SparseLu => {
+                    oracle::solve_lu(grid, &self.stencil, &mut psi)?;
+                    let mut r = vec![0.0; n];
+                    let (rmax, scale) = self.stencil.residual(grid, &psi, &mut r);
+                    residual = if scale > 0.0 { rmax / scale } else { 0.0 };
+                }
+            }
+            // Switch update.
+            let mut changed = 0;
+            let mut first = usize::MAX;
+            for k in 0..n {
+                if grid.kind[k] != NodeKind::Unknown {
+                    continue;
+                }
+                let v = psi[k];
+                if !v.is_finite() {
+                    return Err(ReynoldsError::NonFinite {
+                        what: "ψ = φ − 1",
+                        theta_index: k / nz,
+                        z_index: k % nz,
+                        iteration,
+                    });
+                }
+                let new_g = if v >= 0.0 { 1.0 } else { 0.0 };
+                if new_g != g[k] && flips[k] >= MAX_FLIPS && g[k] > 0.5 {
+                    // A node that keeps flipping is locked full (see the module docs).
+                    continue;
+                }
+                if new_g != g[k] {
+                    flips[k] = flips[k].saturating_add(1);
+                    g[k] = new_g;
+                    changed += 1;
+                    if first == usize::MAX {
+                        first = k;
+                    }
+                }
+            }
+            if changed == 0 {
+                if tight {
+                    break;
+                }
+                tight = true;
+                continue;
+            }
+            if iteration >= p.max_switch_iterations {
+                return Err(ReynoldsError::SwitchNotConverged {
+                    iterations: iteration,
+                    changed_nodes: changed,
+                    theta_index: first / nz,
+                    z_index: first % nz,
+                    residual,
+                });
+            }
+        }
+        // φ ≥ 0 (up to the solve tolerance).
+        for k in 0..n {
+            if psi[k] < -1.0 - 1e-9 {
+                return Err(ReynoldsError::NegativeFilmFraction {
+                    value: 1.0 + psi[k],
+                    theta_index: k / nz,
+                    z_index: k % nz,
+                });
+            }
+        }
+        let mut flux_theta = vec![0.0; n];
+        let mut flux_z = vec![0.0; n];
+        discretization::face_fluxes(&level, &g, &psi, &mut flux_theta, &mut flux_z);
+        Ok(Core {
+            grid: grid.clone(),
+            h: h.node,
+            psi,
+            g,
+            flux_theta,
+            flux_z,
+            iterations: iteration,
+            linear_iterations,
+            residual,
+        })
+    }
+}
+
+/// Switch changes after which a node that is full again stays full (anti-cycling lock).
+const MAX_FLIPS: u8 = 4;
+
+fn check_eps(eps: [f64; 2]) -> Result<(), ReynoldsError> {
+    let m = eps[0].hypot(eps[1]);
+    if m >= 1.0 || m.is_nan() {
+        return Err(ReynoldsError::EccentricityOutOfRange { magnitude: m });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;

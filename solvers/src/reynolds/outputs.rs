@@ -1,0 +1,228 @@
+//! What a solve returns (design.md §5), from the converged discrete film.
+//!
+//! * Pressure p = p_cav + g β ψ at unknowns; p_amb at ends and on the supply line; p_feed (or
+//!   p_cav when cut off) in grooves.
+//! * Film force F = −Σ w_k (p_k − p_amb) (cos θ_i, sin θ_i), w_k = R Δθ Δz on the cells (the
+//!   end rows are boundary points): the midpoint rule, spectrally accurate in θ and second order
+//!   in z.
+//! * h_min = c (1 − |ε|) at θ = atan2(ε_y, ε_x), z = 0 (aligned journal: exact, not gridded);
+//!   p_max and its place are the largest nodal pressure.
+//! * Flows from the face fluxes of the scheme itself: a face between two regions (unknowns,
+//!   end z = −L/2, end z = +L/2, groove g, supply line) moves its flux from one region to the
+//!   other. Side leakage = net inflow into each end; supply flow = net outflow of each groove.
+//!   Because the same fluxes make the discrete balances, Σ supply − Σ leakage = the rate of
+//!   change of the film content, to round-off (0 at steady state).
+//! * Film content Σ V h φ over the unknown nodes (m³ at cavitation density): its rate of change
+//!   closes the balance supply − leakage of a time step.
+//! * Shear (velocity profile u(y) = (1/2μ) p_x (y² − y h) + U (1 − y/h), journal at y = 0):
+//!   stress on the journal −μU f/h − (h/2) p_x, on the bearing +μU f/h − (h/2) p_x, f = 1 in full
+//!   film and φ in a cavity (only the oil fraction shears, design.md §5). Torques about +z are
+//!   R ∫∫ stress dA, with p_x by central differences.
+//! * Power loss = ∫∫ μU² f / h dA + Σ_faces (h_f³/12μ) (Δp/Δs)² A_face (the dissipation
+//!   integral of design.md §5, its pressure part evaluated on the faces of the scheme).
+
+use ndarray::Array2;
+
+use super::grid::NodeKind;
+use super::{Core, FilmSolution, OperatingConditions, ReynoldsParams};
+
+#[derive(Clone, Copy, PartialEq)]
+enum Region {
+    Unknown,
+    EndLow,
+    EndHigh,
+    Groove(u16),
+    Line,
+}
+
+pub(crate) fn film_solution(
+    params: &ReynoldsParams,
+    conditions: &OperatingConditions,
+    eps: [f64; 2],
+    core: &Core,
+    mu: &[f64],
+) -> FilmSolution {
+    let grid = &core.grid;
+    let (nt, nz) = (grid.n_theta, grid.n_z);
+    let n = grid.len();
+    let beta = params.bulk_modulus;
+    let pcav = params.cavitation_pressure;
+    let pamb = params.ambient_pressure;
+    let dx = grid.radius * grid.d_theta;
+    let speed = params.radius * (conditions.journal_speed - conditions.bearing_speed);
+
+    let mut pressure = vec![0.0; n];
+    for k in 0..n {
+        pressure[k] = match grid.kind[k] {
+            NodeKind::End | NodeKind::SupplyLine => pamb,
+            _ => pcav + core.g[k] * beta * core.psi[k],
+        };
+    }
+    // Force, p_max, cavitated fraction.
+    let mut force = [0.0, 0.0];
+    let mut pmax = f64::NEG_INFINITY;
+    let mut pmax_at = [0.0, 0.0];
+    let mut cav_area = 0.0;
+    let mut area = 0.0;
+    let mut content = 0.0;
+    for i in 0..nt {
+        let th = grid.theta(i);
+        let (c, s) = (th.cos(), th.sin());
+        for j in 0..nz {
+            let k = i * nz + j;
+            let w = grid.area_weight[k];
+            let dp = pressure[k] - pamb;
+            force[0] -= w * dp * c;
+            force[1] -= w * dp * s;
+            if pressure[k] > pmax {
+                pmax = pressure[k];
+                pmax_at = [th.rem_euclid(2.0 * std::f64::consts::PI), grid.z(j)];
+            }
+            area += w;
+            if grid.kind[k] == NodeKind::Unknown {
+                content += grid.radius * grid.d_theta * grid.dz * core.h[k] * (1.0 + core.psi[k]);
+            }
+            if core.g[k] < 0.5 {
+                cav_area += w;
+            }
+        }
+    }
+    let load_capacity = force[0].hypot(force[1]);
+    let attitude_angle = {
+        let load_dir = (-force[1]).atan2(-force[0]);
+        let ecc_dir = eps[1].atan2(eps[0]);
+        let a = super::grid::wrap_angle(ecc_dir - load_dir);
+        if speed < 0.0 { -a } else { a }
+    };
+    let emag = eps[0].hypot(eps[1]);
+    let min_film_thickness = params.clearance * (1.0 - emag);
+    let min_film_location = [
+        eps[1].atan2(eps[0]).rem_euclid(2.0 * std::f64::consts::PI),
+        0.0,
+    ];
+
+    // Flows through region boundaries.
+    let region = |k: usize| match grid.kind[k] {
+        NodeKind::Unknown => Region::Unknown,
+        NodeKind::End => {
+            if k.is_multiple_of(nz) {
+                Region::EndLow
+            } else {
+                Region::EndHigh
+            }
+        }
+        NodeKind::Groove(g) => Region::Groove(g),
+        NodeKind::SupplyLine => Region::Line,
+    };
+    let mut supply = vec![0.0; params.grooves.len()];
+    let mut leak = [0.0, 0.0];
+    let mut line = 0.0;
+    let mut account = |from: Region, to: Region, f: f64| {
+        if from == to {
+            return;
+        }
+        match from {
+            Region::Groove(g) => supply[g as usize] += f,
+            Region::Line => line += f,
+            Region::EndLow => leak[0] -= f,
+            Region::EndHigh => leak[1] -= f,
+            Region::Unknown => {}
+        }
+        match to {
+            Region::Groove(g) => supply[g as usize] -= f,
+            Region::Line => line -= f,
+            Region::EndLow => leak[0] += f,
+            Region::EndHigh => leak[1] += f,
+            Region::Unknown => {}
+        }
+    };
+    for i in 0..nt {
+        let ie = (i + 1) % nt;
+        for j in 0..nz {
+            let k = i * nz + j;
+            let (rk, re) = (region(k), region(ie * nz + j));
+            // θ-faces between two end nodes belong to no balance.
+            if !(matches!(rk, Region::EndLow | Region::EndHigh)
+                && matches!(re, Region::EndLow | Region::EndHigh))
+            {
+                account(rk, re, core.flux_theta[k]);
+            }
+            if j + 1 < nz {
+                account(rk, region(k + 1), core.flux_z[k]);
+            }
+        }
+    }
+
+    // Friction and dissipation.
+    let mut tj = 0.0;
+    let mut tb = 0.0;
+    let mut power = 0.0;
+    for i in 0..nt {
+        let iw = (i + nt - 1) % nt;
+        let ie = (i + 1) % nt;
+        for j in 0..nz {
+            let k = i * nz + j;
+            let w = grid.area_weight[k];
+            let h = core.h[k];
+            let f = if core.g[k] > 0.5 {
+                1.0
+            } else {
+                (1.0 + core.psi[k]).clamp(0.0, 1.0)
+            };
+            let couette = mu[k] * speed * f / h;
+            let px = (pressure[ie * nz + j] - pressure[iw * nz + j]) / (2.0 * dx);
+            tj += params.radius * w * (-couette - 0.5 * h * px);
+            tb += params.radius * w * (couette - 0.5 * h * px);
+            power += w * couette * speed;
+            // Pressure dissipation on the east and north faces.
+            let ke = ie * nz + j;
+            let hf = 0.5 * (h + core.h[ke]);
+            let muf = 0.5 * (mu[k] + mu[ke]);
+            let gp = (pressure[ke] - pressure[k]) / dx;
+            let face_area = dx * grid.row_width(j);
+            power += hf.powi(3) / (12.0 * muf) * gp * gp * face_area;
+            if j + 1 < nz {
+                let hf = 0.5 * (h + core.h[k + 1]);
+                let muf = 0.5 * (mu[k] + mu[k + 1]);
+                let gap = grid.z_gap(j);
+                let gp = (pressure[k + 1] - pressure[k]) / gap;
+                power += hf.powi(3) / (12.0 * muf) * gp * gp * dx * gap;
+            }
+        }
+    }
+
+    let shape = (nt, nz);
+    let to_arr = |v: Vec<f64>| Array2::from_shape_vec(shape, v).expect("grid shape");
+    let density: Vec<f64> = core.psi.iter().map(|p| 1.0 + p).collect();
+    let fraction: Vec<f64> = density
+        .iter()
+        .zip(&core.g)
+        .map(|(&d, &g)| if g > 0.5 { 1.0 } else { d })
+        .collect();
+    FilmSolution {
+        film_force: force,
+        load_capacity,
+        attitude_angle,
+        min_film_thickness,
+        min_film_location,
+        max_pressure: pmax,
+        max_pressure_location: pmax_at,
+        cavitated_fraction: cav_area / area,
+        film_content: content,
+        side_leakage: leak,
+        supply_flow: supply,
+        supply_line_flow: line,
+        friction_torque_journal: tj,
+        friction_torque_bearing: tb,
+        power_loss: power,
+        iterations: core.iterations,
+        linear_iterations: core.linear_iterations,
+        residual: core.residual,
+        theta: (0..nt).map(|i| grid.theta(i)).collect(),
+        z: (0..nz).map(|j| grid.z(j)).collect(),
+        pressure: to_arr(pressure),
+        density_ratio: to_arr(density),
+        film_fraction: to_arr(fraction),
+        switch: to_arr(core.g.clone()),
+    }
+}

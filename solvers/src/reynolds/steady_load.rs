@@ -1,0 +1,129 @@
+//! Steady load → eccentricity: Newton on (ε_x, ε_y) for a constant load.
+//!
+//! ```text
+//!   r(ε) = F_film(ε) + W = 0          (design.md §1: the film balances the machine's load)
+//!   J Δε = −r,   J_ab = ∂r_a/∂ε_b by forward differences (δ = 1e-6)
+//! ```
+//!
+//! Start: |ε| = 0.5, 45° ahead of the load in the direction of U (between the short-bearing
+//! attitude at high and low load). Steps are limited to |Δε| ≤ 0.25 and kept inside
+//! |ε| ≤ 0.995, and halved (up to 8 times) while |r| does not decrease. Converged when
+//! |r| ≤ 1e-8 |W|.
+
+use super::{FilmSolution, OperatingConditions, ReynoldsError, ReynoldsSolver};
+
+/// How the steady load solve went.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SteadyLoadInfo {
+    /// Journal position that carries the load.
+    pub eccentricity_ratio: [f64; 2],
+    /// Newton iterations.
+    pub iterations: usize,
+    /// |F_film + W| at the answer, N.
+    pub force_residual: f64,
+    /// Film solves used (including the finite-difference Jacobians).
+    pub film_solves: usize,
+}
+
+const MAX_NEWTON: usize = 40;
+
+pub(crate) fn solve(
+    solver: &mut ReynoldsSolver,
+    load: [f64; 2],
+    conditions: &OperatingConditions,
+) -> Result<(FilmSolution, SteadyLoadInfo), ReynoldsError> {
+    let wmag = load[0].hypot(load[1]);
+    if !(wmag > 0.0 && wmag.is_finite()) {
+        return Err(ReynoldsError::InvalidParameter {
+            name: "load",
+            value: wmag,
+            reason: "a steady load solve needs a non-zero finite load",
+        });
+    }
+    let speed = conditions.journal_speed - conditions.bearing_speed;
+    let dir = load[1].atan2(load[0]) + speed.signum() * std::f64::consts::FRAC_PI_4;
+    let mut eps = [0.5 * dir.cos(), 0.5 * dir.sin()];
+    let mut solves = 0;
+    let mut eval = |solver: &mut ReynoldsSolver, e: [f64; 2]| {
+        solves += 1;
+        solver.solve_steady(e, conditions).map(|s| {
+            let r = [s.film_force[0] + load[0], s.film_force[1] + load[1]];
+            (s, r)
+        })
+    };
+    let (mut sol, mut r) = eval(solver, eps)?;
+    let tol = 1e-8 * wmag;
+    for it in 0..MAX_NEWTON {
+        let rn = r[0].hypot(r[1]);
+        if rn <= tol {
+            let info = SteadyLoadInfo {
+                eccentricity_ratio: eps,
+                iterations: it,
+                force_residual: rn,
+                film_solves: solves,
+            };
+            return Ok((sol, info));
+        }
+        // Forward-difference Jacobian.
+        let d = 1e-6;
+        let mut jac = [[0.0; 2]; 2];
+        for b in 0..2 {
+            let mut e = eps;
+            e[b] += if eps[0].hypot(eps[1]) > 0.99 { -d } else { d };
+            let step = e[b] - eps[b];
+            let (_, rb) = eval(solver, e)?;
+            jac[0][b] = (rb[0] - r[0]) / step;
+            jac[1][b] = (rb[1] - r[1]) / step;
+        }
+        let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        if !(det.is_finite() && det != 0.0) {
+            return Err(ReynoldsError::SteadyLoadNotConverged {
+                iterations: it,
+                force_residual: rn,
+                eccentricity_ratio: eps,
+            });
+        }
+        let mut de = [
+            -(jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
+            -(-jac[1][0] * r[0] + jac[0][0] * r[1]) / det,
+        ];
+        let len = de[0].hypot(de[1]);
+        if len > 0.25 {
+            de = [de[0] * 0.25 / len, de[1] * 0.25 / len];
+        }
+        let mut lambda = 1.0;
+        let mut accepted = false;
+        for _ in 0..9 {
+            let mut trial = [eps[0] + lambda * de[0], eps[1] + lambda * de[1]];
+            let m = trial[0].hypot(trial[1]);
+            if m > 0.995 {
+                trial = [trial[0] * 0.995 / m, trial[1] * 0.995 / m];
+            }
+            match eval(solver, trial) {
+                Ok((s, rt)) if rt[0].hypot(rt[1]) < rn => {
+                    eps = trial;
+                    sol = s;
+                    r = rt;
+                    accepted = true;
+                    break;
+                }
+                Ok(_) => {}
+                Err(e) if lambda < 0.01 => return Err(e),
+                Err(_) => {}
+            }
+            lambda *= 0.5;
+        }
+        if !accepted {
+            return Err(ReynoldsError::SteadyLoadNotConverged {
+                iterations: it,
+                force_residual: rn,
+                eccentricity_ratio: eps,
+            });
+        }
+    }
+    Err(ReynoldsError::SteadyLoadNotConverged {
+        iterations: MAX_NEWTON,
+        force_residual: r[0].hypot(r[1]),
+        eccentricity_ratio: eps,
+    })
+}

@@ -1,0 +1,96 @@
+//! Unit tests: discrete mass balance, ADI-Krylov against the sparse-LU oracle, error paths.
+
+use super::*;
+
+fn grooved(solver: LinearSolver) -> ReynoldsParams {
+    let mut p = ReynoldsParams::plain(0.025, 0.025, 50e-6, 0.03);
+    p.grid = GridParams {
+        n_theta: 72,
+        n_z: 17,
+    };
+    p.linear_solver = solver;
+    p.grooves = vec![Groove {
+        center_angle: std::f64::consts::FRAC_PI_2,
+        center_z: 0.0,
+        angular_width: 0.2,
+        axial_width: 0.008,
+        cutoff_film_fraction: 0.01,
+    }];
+    p
+}
+
+fn conditions(feed: f64) -> OperatingConditions {
+    OperatingConditions {
+        journal_speed: 300.0,
+        bearing_speed: 0.0,
+        feed_pressures: vec![feed],
+    }
+}
+
+/// Mass balance of a steady grooved bearing: the scheme is conservative, so supply = side
+/// leakage up to the solve tolerance (1e-10 on the residual; 1e-8 relative asked).
+#[test]
+fn steady_grooved_mass_balance() {
+    for solver in [LinearSolver::AdiKrylov, LinearSolver::SparseLu] {
+        let mut s = ReynoldsSolver::new(grooved(solver)).unwrap();
+        let sol = s.solve_steady([0.6, -0.3], &conditions(2e5)).unwrap();
+        let supply: f64 = sol.supply_flow.iter().sum();
+        let leak = sol.side_leakage[0] + sol.side_leakage[1];
+        assert!(supply > 0.0 && leak > 0.0);
+        assert!(
+            ((supply - leak) / leak).abs() <= 1e-8,
+            "{solver:?}: supply {supply:e} leak {leak:e}"
+        );
+        assert!(sol.cavitated_fraction > 0.05, "{}", sol.cavitated_fraction);
+        // Symmetric about the mid-plane.
+        assert!(((sol.side_leakage[0] - sol.side_leakage[1]) / leak).abs() < 1e-8);
+    }
+}
+
+/// The ADI-Krylov answer matches the sparse-LU oracle (same discrete system).
+#[test]
+fn adi_matches_lu_oracle() {
+    let mut a = ReynoldsSolver::new(grooved(LinearSolver::AdiKrylov)).unwrap();
+    let mut b = ReynoldsSolver::new(grooved(LinearSolver::SparseLu)).unwrap();
+    let c = conditions(2e5);
+    let sa = a.solve_steady([0.5, 0.4], &c).unwrap();
+    let sb = b.solve_steady([0.5, 0.4], &c).unwrap();
+    let pmax = sb.max_pressure;
+    let diff = sa
+        .pressure
+        .iter()
+        .zip(sb.pressure.iter())
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(diff / pmax < 1e-7, "max |Δp|/p_max = {:e}", diff / pmax);
+    assert_eq!(sa.switch, sb.switch);
+    // A time step too.
+    let st = a.initial_state([0.5, 0.4]);
+    let input = StepInput {
+        eccentricity_ratio: [0.52, 0.4],
+        dt: 1e-4,
+        conditions: c.clone(),
+    };
+    let (ta, _) = a.solve_step(&st, &input).unwrap();
+    let (tb, _) = b.solve_step(&st, &input).unwrap();
+    let diff = ta
+        .pressure
+        .iter()
+        .zip(tb.pressure.iter())
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        diff / tb.max_pressure < 1e-7,
+        "{:e}",
+        diff / tb.max_pressure
+    );
+}
+
+#[test]
+fn no_supply_is_rejected() {
+    let p = ReynoldsParams::plain(0.025, 0.025, 50e-6, 0.03);
+    assert!(matches!(
+        ReynoldsSolver::new(p),
+        Err(ReynoldsError::NoSupply { .. })
+    ));
+}
