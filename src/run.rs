@@ -20,7 +20,7 @@ use jbearing_solvers::mobility::{
 
 use jbearing_solvers::closed_form::{ClosedFormModel, ClosedFormParams, static_equilibrium};
 use jbearing_solvers::inverse::{
-    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution,
+    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, ReynoldsFilm,
     ShortBearingFilm, ShortBearingParams, TimeScheme, solve_inverse,
 };
 use jbearing_solvers::load::LoadHistory;
@@ -126,27 +126,39 @@ pub struct CaseOutcome {
     pub files: Vec<PathBuf>,
 }
 
-/// The rigorous inverse solution of the case, or `None` while its film is not part of this
-/// build. This is the one place the rigorous method enters the application:
+/// The rigorous inverse solution of the case. This is the one place the rigorous method enters
+/// the application:
 ///
 /// ```text
 ///   Case ──► CaseHistory (LoadHistory: load, ω_j(t), ω_b(t), p_feed(t) per groove)
-///        ──► film: Reynolds (JFO)            [when the reynolds solver is on main]
+///        ──► film: ReynoldsFilm (JFO)        [default, solver.rigorous_film = "reynolds"]
 ///                  | ShortBearingFilm        [solver.rigorous_film = "short_bearing"]
 ///        ──► solve_inverse(InverseParams from [solver]) ──► inverse_result ──► MethodResult
 /// ```
-pub fn run_rigorous(
-    case: &Case,
-    observer: &dyn RunObserver,
-) -> Result<Option<MethodResult>, RunError> {
+pub fn run_rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodResult, RunError> {
     let params = inverse_params(case);
     let history = CaseHistory::new(case);
     let mut adapter = InverseAdapter {
         case: &case.name,
         observer,
     };
-    match case.solver.rigorous_film {
-        RigorousFilm::Reynolds => Ok(None),
+    let fail = |message: String| RunError::Rigorous {
+        case: case.name.clone(),
+        message,
+    };
+    let (solution, description) = match case.solver.rigorous_film {
+        RigorousFilm::Reynolds => {
+            observer.method_started(&case.name, Method::Rigorous);
+            let mut film = ReynoldsFilm::new(reynolds_params(case))
+                .map_err(|e| fail(format!("Reynolds film: {e}")))?;
+            let solution = solve_inverse(&params, &history, &mut film, &mut adapter)
+                .map_err(|e| fail(e.to_string()))?;
+            (
+                solution,
+                "inverse solver (Newton on eccentricity per time step) with the mass-conserving \
+                 universal Reynolds (Elrod-Vijayaraghavan, JFO) film",
+            )
+        }
         RigorousFilm::ShortBearing => {
             observer.method_started(&case.name, Method::Rigorous);
             let mut film = ShortBearingFilm::new(ShortBearingParams {
@@ -160,43 +172,22 @@ pub fn run_rigorous(
                     TimeScheme::BackwardEuler
                 },
             })
-            .map_err(|e| RunError::Rigorous {
-                case: case.name.clone(),
-                message: e.to_string(),
-            })?;
-            let solution =
-                solve_inverse(&params, &history, &mut film, &mut adapter).map_err(|e| {
-                    RunError::Rigorous {
-                        case: case.name.clone(),
-                        message: e.to_string(),
-                    }
-                })?;
-            observer.method_done(&case.name, Method::Rigorous);
-            Ok(Some(inverse_result(
-                case,
-                &solution,
+            .map_err(|e| fail(e.to_string()))?;
+            let solution = solve_inverse(&params, &history, &mut film, &mut adapter)
+                .map_err(|e| fail(e.to_string()))?;
+            (
+                solution,
                 "inverse solver with the analytic short-bearing film (Gumbel half film, moving \
                  journal) - NOT the mass-conserving Reynolds film",
-            )))
+            )
         }
-    }
+    };
+    observer.method_done(&case.name, Method::Rigorous);
+    Ok(inverse_result(case, &solution, description))
 }
 
-/// Why the rigorous method is absent from a report (the note written into the file).
-pub const RIGOROUS_MISSING: &str = "the mass-conserving Reynolds (JFO) film is not part of this \
-     build yet: this report holds the mobility method only (the inverse solver is wired; \
-     solver.rigorous_film = \"short_bearing\" runs it with the analytic short-bearing film)";
-
-/// The Reynolds (JFO) film parameters of the case: what the `RigorousFilm::Reynolds` arm of
-/// [`run_rigorous`] hands to the inverse solver's Reynolds film adapter once that adapter is in
-/// the solvers' module tree (`solvers/src/inverse/reynolds_film.rs` is a draft on main):
-///
-/// ```text
-///   RigorousFilm::Reynolds => {
-///       let mut film = ReynoldsFilm::new(reynolds_params(case))?;
-///       solve_inverse(&inverse_params(case), &CaseHistory::new(case), &mut film, &mut adapter)
-///   }
-/// ```
+/// The Reynolds (JFO) film parameters of the case, handed to [`ReynoldsFilm`] by
+/// [`run_rigorous`].
 pub fn reynolds_params(case: &Case) -> ReynoldsParams {
     ReynoldsParams {
         bulk_modulus: case.bulk_modulus,
@@ -868,17 +859,7 @@ pub fn solve_case(case: &Case, observer: &dyn RunObserver) -> Result<CaseReport,
     let mut methods = Vec::new();
     let mut parameters = case.parameters();
     if case.methods.rigorous {
-        match run_rigorous(case, observer)? {
-            Some(r) => methods.push(r),
-            None => {
-                tracing::warn!(case = %case.name, "{RIGOROUS_MISSING}");
-                parameters.push(Parameter::text(
-                    "rigorous_status",
-                    RIGOROUS_MISSING,
-                    "why the rigorous method is absent",
-                ));
-            }
-        }
+        methods.push(run_rigorous(case, observer)?);
     }
     if case.methods.mobility {
         methods.push(run_mobility(case, observer)?);
