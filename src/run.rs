@@ -186,6 +186,9 @@ pub fn run_rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
     Ok(inverse_result(case, &solution, description))
 }
 
+/// Key of the report parameter that says why the rigorous method is missing (it failed).
+pub const RIGOROUS_STATUS: &str = "rigorous_status";
+
 /// The Reynolds (JFO) film parameters of the case, handed to [`ReynoldsFilm`] by
 /// [`run_rigorous`].
 pub fn reynolds_params(case: &Case) -> ReynoldsParams {
@@ -859,7 +862,20 @@ pub fn solve_case(case: &Case, observer: &dyn RunObserver) -> Result<CaseReport,
     let mut methods = Vec::new();
     let mut parameters = case.parameters();
     if case.methods.rigorous {
-        methods.push(run_rigorous(case, observer)?);
+        match run_rigorous(case, observer) {
+            Ok(r) => methods.push(r),
+            // The mobility answer is still worth writing: keep it, and say in the file (and the
+            // batch summary) why the rigorous one is missing. Without mobility the case fails.
+            Err(err) if case.methods.mobility => {
+                tracing::error!(case = %case.name, "rigorous method failed: {err}");
+                parameters.push(Parameter::text(
+                    RIGOROUS_STATUS,
+                    &format!("failed: {err}"),
+                    "why the rigorous method is absent from this file",
+                ));
+            }
+            Err(err) => return Err(err),
+        }
     }
     if case.methods.mobility {
         methods.push(run_mobility(case, observer)?);
