@@ -206,17 +206,10 @@ pub fn summary_csv(entries: &[BatchEntry]) -> String {
                             .and_then(|r| r.value(m.method));
                         let _ = write!(s, ",{}", v.map(|v| format!("{v:.6e}")).unwrap_or_default());
                     }
-                    let note = if o
-                        .report
-                        .parameters
-                        .iter()
-                        .any(|p| p.key == "rigorous_status")
-                    {
-                        "rigorous method not in this build"
-                    } else {
-                        ""
-                    };
-                    let _ = writeln!(s, ",{note}");
+                    let note = rigorous_status(&o.report)
+                        .map(|m| format!("rigorous {}", m.replace('"', "'")))
+                        .unwrap_or_default();
+                    let _ = writeln!(s, ",\"{note}\"");
                 }
             }
         }
@@ -243,7 +236,13 @@ pub fn summary_table(entries: &[BatchEntry]) -> String {
             }
             Ok(o) => {
                 for m in &o.report.methods {
-                    let _ = write!(s, "{:<26} {:<10} {:<8}", o.report.case_name, m.method, "ok");
+                    let _ = write!(
+                        s,
+                        "{:<26} {:<10} {:<8}",
+                        o.report.case_name,
+                        m.method.as_str(),
+                        "ok"
+                    );
                     for (col, _) in COLUMNS {
                         let v = o
                             .report
@@ -262,8 +261,27 @@ pub fn summary_table(entries: &[BatchEntry]) -> String {
                     }
                     s.push('\n');
                 }
+                if let Some(m) = rigorous_status(&o.report) {
+                    let _ = writeln!(
+                        s,
+                        "{:<26} {:<10} FAILED   {m}",
+                        o.report.case_name, "rigorous"
+                    );
+                }
             }
         }
     }
     s
+}
+
+/// Why the rigorous method is missing from a report, if it failed.
+fn rigorous_status(report: &crate::output::CaseReport) -> Option<&str> {
+    report
+        .parameters
+        .iter()
+        .find(|p| p.key == crate::run::RIGOROUS_STATUS)
+        .and_then(|p| match &p.value {
+            crate::output::ParameterValue::Text(t) => Some(t.as_str()),
+            _ => None,
+        })
 }

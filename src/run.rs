@@ -15,15 +15,19 @@ use std::time::Instant;
 
 use jbearing_solvers::mobility::{
     BookerShortBearing, ExactShortBearing, MobilityError, MobilityMap, MobilityMapParams,
-    MobilityModel, MobilityParams, OrbitInfo, OrbitParams, PeriodicLoad, ShortBearingSqueeze,
-    solve_orbit,
+    MobilityModel, MobilityParams, OrbitInfo, OrbitParams, PeriodicLoad, solve_orbit,
 };
 
+use jbearing_solvers::closed_form::{ClosedFormModel, ClosedFormParams, static_equilibrium};
 use jbearing_solvers::inverse::{
-    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution,
+    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, ReynoldsFilm,
     ShortBearingFilm, ShortBearingParams, TimeScheme, solve_inverse,
 };
 use jbearing_solvers::load::LoadHistory;
+use jbearing_solvers::reynolds::{
+    GridParams, Groove as ReynoldsGroove, ReynoldsParams, TimeScheme as ReynoldsTimeScheme,
+};
+use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
 use ndarray::Array3;
 
 use crate::case::{Case, CaseError, MobilityModelChoice, RigorousFilm};
@@ -89,6 +93,16 @@ pub enum RunError {
         /// The solver's error.
         message: String,
     },
+    /// A closed-form equilibrium failed.
+    #[error("case '{case}': closed-form equilibrium ({model}): {message}")]
+    ClosedForm {
+        /// Case name.
+        case: String,
+        /// The model.
+        model: &'static str,
+        /// The error.
+        message: String,
+    },
     /// Writing the results failed.
     #[error(transparent)]
     Output(#[from] OutputError),
@@ -112,27 +126,39 @@ pub struct CaseOutcome {
     pub files: Vec<PathBuf>,
 }
 
-/// The rigorous inverse solution of the case, or `None` while its film is not part of this
-/// build. This is the one place the rigorous method enters the application:
+/// The rigorous inverse solution of the case. This is the one place the rigorous method enters
+/// the application:
 ///
 /// ```text
 ///   Case ──► CaseHistory (LoadHistory: load, ω_j(t), ω_b(t), p_feed(t) per groove)
-///        ──► film: Reynolds (JFO)            [when the reynolds solver is on main]
+///        ──► film: ReynoldsFilm (JFO)        [default, solver.rigorous_film = "reynolds"]
 ///                  | ShortBearingFilm        [solver.rigorous_film = "short_bearing"]
 ///        ──► solve_inverse(InverseParams from [solver]) ──► inverse_result ──► MethodResult
 /// ```
-pub fn run_rigorous(
-    case: &Case,
-    observer: &dyn RunObserver,
-) -> Result<Option<MethodResult>, RunError> {
+pub fn run_rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodResult, RunError> {
     let params = inverse_params(case);
     let history = CaseHistory::new(case);
     let mut adapter = InverseAdapter {
         case: &case.name,
         observer,
     };
-    match case.solver.rigorous_film {
-        RigorousFilm::Reynolds => Ok(None),
+    let fail = |message: String| RunError::Rigorous {
+        case: case.name.clone(),
+        message,
+    };
+    let (solution, description) = match case.solver.rigorous_film {
+        RigorousFilm::Reynolds => {
+            observer.method_started(&case.name, Method::Rigorous);
+            let mut film = ReynoldsFilm::new(reynolds_params(case))
+                .map_err(|e| fail(format!("Reynolds film: {e}")))?;
+            let solution = solve_inverse(&params, &history, &mut film, &mut adapter)
+                .map_err(|e| fail(e.to_string()))?;
+            (
+                solution,
+                "inverse solver (Newton on eccentricity per time step) with the mass-conserving \
+                 universal Reynolds (Elrod-Vijayaraghavan, JFO) film",
+            )
+        }
         RigorousFilm::ShortBearing => {
             observer.method_started(&case.name, Method::Rigorous);
             let mut film = ShortBearingFilm::new(ShortBearingParams {
@@ -146,32 +172,58 @@ pub fn run_rigorous(
                     TimeScheme::BackwardEuler
                 },
             })
-            .map_err(|e| RunError::Rigorous {
-                case: case.name.clone(),
-                message: e.to_string(),
-            })?;
-            let solution =
-                solve_inverse(&params, &history, &mut film, &mut adapter).map_err(|e| {
-                    RunError::Rigorous {
-                        case: case.name.clone(),
-                        message: e.to_string(),
-                    }
-                })?;
-            observer.method_done(&case.name, Method::Rigorous);
-            Ok(Some(inverse_result(
-                case,
-                &solution,
+            .map_err(|e| fail(e.to_string()))?;
+            let solution = solve_inverse(&params, &history, &mut film, &mut adapter)
+                .map_err(|e| fail(e.to_string()))?;
+            (
+                solution,
                 "inverse solver with the analytic short-bearing film (Gumbel half film, moving \
                  journal) - NOT the mass-conserving Reynolds film",
-            )))
+            )
         }
-    }
+    };
+    observer.method_done(&case.name, Method::Rigorous);
+    Ok(inverse_result(case, &solution, description))
 }
 
-/// Why the rigorous method is absent from a report (the note written into the file).
-pub const RIGOROUS_MISSING: &str = "the mass-conserving Reynolds (JFO) film is not part of this \
-     build yet: this report holds the mobility method only (the inverse solver is wired; \
-     solver.rigorous_film = \"short_bearing\" runs it with the analytic short-bearing film)";
+/// Key of the report parameter that says why the rigorous method is missing (it failed).
+pub const RIGOROUS_STATUS: &str = "rigorous_status";
+
+/// The Reynolds (JFO) film parameters of the case, handed to [`ReynoldsFilm`] by
+/// [`run_rigorous`].
+pub fn reynolds_params(case: &Case) -> ReynoldsParams {
+    ReynoldsParams {
+        bulk_modulus: case.bulk_modulus,
+        cavitation_pressure: case.cavitation_pressure,
+        ambient_pressure: case.ambient_pressure,
+        grooves: case
+            .grooves
+            .iter()
+            .map(|g| ReynoldsGroove {
+                center_angle: g.center_angle,
+                center_z: g.axial_center,
+                angular_width: g.circumferential_length / case.radius,
+                axial_width: g.axial_width,
+                cutoff_film_fraction: case.starved_film_fraction,
+            })
+            .collect(),
+        grid: GridParams {
+            n_theta: case.n_theta,
+            n_z: case.n_z,
+        },
+        time_scheme: if case.solver.crank_nicolson {
+            ReynoldsTimeScheme::CrankNicolson
+        } else {
+            ReynoldsTimeScheme::BackwardEuler
+        },
+        ..ReynoldsParams::plain(
+            case.radius,
+            case.length,
+            case.radial_clearance,
+            case.viscosity,
+        )
+    }
+}
 
 /// The inverse solver's settings from the case's `[solver]` and `[output]` tables.
 pub fn inverse_params(case: &Case) -> InverseParams {
@@ -514,21 +566,32 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
             "exact short-bearing mobility (inverted squeeze integrals)",
         ),
         MobilityModelChoice::Map => {
+            // Finite-length mobility (design.md §6, Goenka's construction): pure-squeeze
+            // solutions of our own Reynolds-condition film over (ε, load angle) for this L/D.
+            let film = ReynoldsSqueezeFilm::new(SqueezeFilmParams::new(ld)).map_err(|e| {
+                RunError::MobilityMap {
+                    case: case.name.clone(),
+                    message: e.to_string(),
+                }
+            })?;
             let map = MobilityMap::build(
-                &ShortBearingSqueeze {
-                    length_to_diameter: ld,
+                &film,
+                &MobilityMapParams {
+                    eccentricity_nodes: 21,
+                    angle_nodes: 19,
+                    max_eccentricity: 0.97,
                 },
-                &MobilityMapParams::default(),
             )
             .map_err(|e| RunError::MobilityMap {
                 case: case.name.clone(),
                 message: e.to_string(),
             })?;
             check_model(&map, ld);
+            params.eccentricity_limit = params.eccentricity_limit.min(map.max_eccentricity());
             (
                 solve_orbit(&params, &map, &load).map_err(err)?,
-                "tabulated mobility map (short-bearing squeeze provider until the finite-length \
-                 Reynolds provider is on main)",
+                "finite-length mobility map: pure-squeeze Reynolds-condition film of this L/D \
+                 (squeeze_film), 21 x 19 nodes up to eps = 0.97",
             )
         }
     };
@@ -668,6 +731,77 @@ fn mobility_result(
     }
 }
 
+/// The static-equilibrium table of the closed-form models (seed 004) under the cycle-mean load
+/// at the cycle-mean relative speed ω_j − ω_b, as report parameters
+/// `closed_form_<model>_{eccentricity_ratio, attitude_angle, min_film_thickness,
+/// sommerfeld_number}`. For a constant load this is the steady answer; for a dynamic load it is
+/// the designer's first static estimate.
+pub fn closed_form_equilibria(case: &Case) -> Result<Vec<Parameter>, RunError> {
+    let load = case.load();
+    let n = 720;
+    let mut mean = [0.0; 2];
+    for k in 0..n {
+        let w = load.load_at_crank_angle(case.cycle_deg * k as f64 / n as f64);
+        mean[0] += w[0] / n as f64;
+        mean[1] += w[1] / n as f64;
+    }
+    let speed = case.journal_speed.mean(case.cycle_deg) - case.bearing_speed.mean(case.cycle_deg);
+    let params = ClosedFormParams {
+        radius: case.radius,
+        length: case.length,
+        radial_clearance: case.radial_clearance,
+        viscosity: case.viscosity,
+    };
+    let mut out = vec![
+        Parameter::number(
+            "closed_form_load_x",
+            mean[0],
+            "N",
+            "closed-form equilibria: cycle-mean load, x",
+        ),
+        Parameter::number(
+            "closed_form_load_y",
+            mean[1],
+            "N",
+            "closed-form equilibria: cycle-mean load, y",
+        ),
+    ];
+    for model in ClosedFormModel::ALL {
+        let e =
+            static_equilibrium(model, &params, mean, speed).map_err(|e| RunError::ClosedForm {
+                case: case.name.clone(),
+                model: model.name(),
+                message: e.to_string(),
+            })?;
+        let k = |q: &str| format!("closed_form_{}_{q}", model.name());
+        out.push(Parameter::number(
+            &k("eccentricity_ratio"),
+            e.eccentricity_ratio,
+            "1",
+            "static equilibrium: eccentricity ratio",
+        ));
+        out.push(Parameter::number(
+            &k("attitude_angle"),
+            e.attitude_angle,
+            "rad",
+            "static equilibrium: attitude angle from the load line",
+        ));
+        out.push(Parameter::number(
+            &k("min_film_thickness"),
+            e.min_film_thickness,
+            "m",
+            "static equilibrium: minimum film thickness",
+        ));
+        out.push(Parameter::number(
+            &k("sommerfeld_number"),
+            e.sommerfeld_number,
+            "1",
+            "static equilibrium: Sommerfeld number",
+        ));
+    }
+    Ok(out)
+}
+
 /// The summary table of a report from its methods.
 pub fn summary_rows(methods: &[MethodResult]) -> Vec<SummaryRow> {
     use Reduction::*;
@@ -728,20 +862,26 @@ pub fn solve_case(case: &Case, observer: &dyn RunObserver) -> Result<CaseReport,
     let mut methods = Vec::new();
     let mut parameters = case.parameters();
     if case.methods.rigorous {
-        match run_rigorous(case, observer)? {
-            Some(r) => methods.push(r),
-            None => {
-                tracing::warn!(case = %case.name, "{RIGOROUS_MISSING}");
+        match run_rigorous(case, observer) {
+            Ok(r) => methods.push(r),
+            // The mobility answer is still worth writing: keep it, and say in the file (and the
+            // batch summary) why the rigorous one is missing. Without mobility the case fails.
+            Err(err) if case.methods.mobility => {
+                tracing::error!(case = %case.name, "rigorous method failed: {err}");
                 parameters.push(Parameter::text(
-                    "rigorous_status",
-                    RIGOROUS_MISSING,
-                    "why the rigorous method is absent",
+                    RIGOROUS_STATUS,
+                    &format!("failed: {err}"),
+                    "why the rigorous method is absent from this file",
                 ));
             }
+            Err(err) => return Err(err),
         }
     }
     if case.methods.mobility {
         methods.push(run_mobility(case, observer)?);
+    }
+    if case.methods.closed_form {
+        parameters.extend(closed_form_equilibria(case)?);
     }
     let summary = summary_rows(&methods);
     let closed_form = crate::closed_form_report::report_table(case, &methods);

@@ -331,3 +331,78 @@ fn closed_form_prints_the_seed_004_equilibria() {
     // Nothing was solved or written: no files listed.
     assert!(!stdout.contains("wrote"), "{stdout}");
 }
+
+#[test]
+fn closed_form_table_agrees_with_the_mobility_equilibrium_of_a_steady_load() {
+    // JB1 (seed 003) under its constant load: the mobility orbit (Booker's short-bearing
+    // mobility) settles at the static equilibrium; the closed-form short-bearing Gumbel model
+    // solves that equilibrium directly (seed 004). Two routes to the same short-bearing answer:
+    // Booker's closed form approximates the Gumbel squeeze film to about 1 % in ε here, hence 1 %.
+    let case = jbearing::case::Case::from_file(&root().join("cases/benasciutti_jb1_steady.toml"))
+        .expect("JB1 case");
+    assert!(case.methods.closed_form);
+    let report = jbearing::run::solve_case(&case, &jbearing::run::Quiet).expect("JB1 solves");
+    let param = |k: &str| match report
+        .parameters
+        .iter()
+        .find(|p| p.key == k)
+        .map(|p| &p.value)
+    {
+        Some(jbearing::output::ParameterValue::Number(v)) => *v,
+        other => panic!("{k}: {other:?}"),
+    };
+    let eps_closed = param("closed_form_short_gumbel_eccentricity_ratio");
+    let m = report.method(jbearing::output::Method::Mobility).unwrap();
+    let eps_mob = m
+        .reduce(
+            jbearing::output::names::ECCENTRICITY_RATIO,
+            jbearing::output::Reduction::Mean,
+        )
+        .unwrap();
+    assert!(
+        (eps_closed - eps_mob).abs() < 0.01 * eps_closed,
+        "closed form {eps_closed} vs mobility {eps_mob}"
+    );
+    // Every model of the table is there, with a physical ε.
+    for model in [
+        "long_sommerfeld",
+        "long_gumbel",
+        "short_sommerfeld",
+        "short_gumbel",
+        "short_gumbel_moving_film",
+        "pinkus_sternlicht",
+    ] {
+        let e = param(&format!("closed_form_{model}_eccentricity_ratio"));
+        assert!(e > 0.0 && e < 1.0, "{model}: ε = {e}");
+    }
+}
+
+#[test]
+fn case_maps_onto_the_reynolds_solver_parameters() {
+    // The rigorous method's input: the rod case's groove (Table II: 7.62 mm around on
+    // R = 14.45 mm → 0.527 rad), cut-off film fraction 0.01 (Fig. 4), grid and fluid, in SI.
+    let case = jbearing::case::Case::from_file(&root().join("cases/compressor_rod.toml")).unwrap();
+    let p = jbearing::run::reynolds_params(&case);
+    assert_eq!((p.grid.n_theta, p.grid.n_z), (120, 31));
+    assert_eq!(p.grooves.len(), 1);
+    let g = &p.grooves[0];
+    assert!((g.angular_width - 0.00762 / 0.01445).abs() < 1e-12);
+    assert!((g.center_angle - std::f64::consts::PI).abs() < 1e-12);
+    assert_eq!(g.cutoff_film_fraction, 0.01);
+    assert_eq!(
+        (p.radius, p.length, p.clearance),
+        (0.01445, 0.02235, 2.54e-5)
+    );
+    assert_eq!((p.viscosity, p.bulk_modulus), (0.02, 1.5e9));
+    // The feed history reaches the film per groove, from the drilling table: open near TDC,
+    // cut off (0 Pa = p_cav) at mid-stroke.
+    use jbearing_solvers::load::LoadHistory;
+    let h = jbearing::run::CaseHistory::new(&case);
+    let t = |deg: f64| deg.to_radians() / case.crank_speed;
+    assert!((h.feed_pressures(t(0.0))[0] - 2.107060e5).abs() < 1.0);
+    assert_eq!(h.feed_pressures(t(180.0)), vec![0.0]);
+    // The big end turns with the rod: ω_b = −λΩ cos φ / cos β, −λΩ at TDC (λ = 0.25).
+    assert!((h.bearing_speed(0.0) + 0.25 * case.crank_speed).abs() < 1e-6 * case.crank_speed);
+    // The table keeps 10 significant digits.
+    assert!((h.journal_speed(t(90.0)) - case.crank_speed).abs() < 1e-8 * case.crank_speed);
+}

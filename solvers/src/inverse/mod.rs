@@ -54,10 +54,13 @@
 //! - [`ShortBearingFilm`]: Ocvirk's short bearing with Gumbel's half film and a moving journal
 //!   (seed 000 eqs. 18–22; seed 004), analytic, with backward-Euler or Crank–Nicolson time
 //!   discretisation of the journal velocity.
-//! - the universal Reynolds solver (mass-conserving), adapted in `reynolds_film` once available.
+//! - [`ReynoldsFilm`]: the universal (mass-conserving) Reynolds solver [`crate::reynolds`].
 
+mod reynolds_film;
 mod short_bearing;
 mod solve;
+
+pub use reynolds_film::{ReynoldsFilm, film_response};
 
 pub use short_bearing::{ShortBearingFilm, ShortBearingParams, ShortBearingState, TimeScheme};
 pub use solve::{

@@ -46,7 +46,7 @@ use crate::tridiagonal::{
 };
 
 /// Krylov subspace size before a restart.
-const RESTART: usize = 24;
+const RESTART: usize = 48;
 
 /// Scratch memory of the ADI-Krylov solve, reused across solves (no allocation when warm).
 #[derive(Debug, Clone, Default)]

@@ -35,6 +35,15 @@
 //! generic code instantiated for chunks of 4, 2 and 1 lanes. The workspace holds the normalised
 //! super-diagonal u and fill-in f of one chunk: 2 · m · 8 values, independent of `lines`.
 //!
+//! ## Instruction sets
+//!
+//! The default x86-64 target only guarantees SSE2 (2 doubles per vector). On x86-64 the chunk
+//! loop is compiled twice, for that baseline and with AVX2 enabled (4 doubles per vector), and
+//! the AVX2 copy is chosen at run time when the CPU has it (`is_x86_feature_detected!`). Only the
+//! width of the vectors differs: the same IEEE operations in the same order (AVX2 code contains
+//! no fused multiply-add unless asked for, and nothing here asks), so both copies give the same
+//! bits as the single-line functions.
+//!
 //! ## Pivot checks without branches
 //!
 //! Each lane accumulates a flag `ok &= pivot_ok(pivot, scale)` (a compare and an and, no branch)
@@ -261,7 +270,34 @@ trait ChunkKernel {
     ) -> Result<(), ChunkError<L>>;
 }
 
+/// Runs the chunks, with AVX2 when the CPU has it (see "Instruction sets" in the module docs).
 fn solve_all<K: ChunkKernel>(
+    kernel: &K,
+    x: &mut [f64],
+    work: &mut BatchWorkspace,
+) -> Result<(), TridiagonalError> {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2 (checked just above), the only requirement of calling
+        // a function compiled with `target_feature(enable = "avx2")`.
+        return unsafe { solve_all_avx2(kernel, x, work) };
+    }
+    solve_all_generic(kernel, x, work)
+}
+
+/// [`solve_all_generic`] compiled for AVX2 (4 doubles per vector instead of SSE2's 2).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn solve_all_avx2<K: ChunkKernel>(
+    kernel: &K,
+    x: &mut [f64],
+    work: &mut BatchWorkspace,
+) -> Result<(), TridiagonalError> {
+    solve_all_generic(kernel, x, work)
+}
+
+#[inline(always)]
+fn solve_all_generic<K: ChunkKernel>(
     kernel: &K,
     x: &mut [f64],
     work: &mut BatchWorkspace,
