@@ -242,6 +242,7 @@ fn help_names_every_command() {
         "check",
         "validate",
         "synth-loads",
+        "closed-form",
         "--verbose",
         "--quiet",
     ] {
