@@ -51,6 +51,13 @@ pub struct InverseParams {
     pub accept_tolerance: f64,
     /// Newton iterations allowed per time step (default 40).
     pub max_newton_iterations: usize,
+    /// A time step whose Newton fails is retried as two half steps (the film state carried
+    /// through the midpoint, the load and conditions taken there), recursively, up to this many
+    /// halvings (default 4: down to 1/16 of the step). Only the step's end enters the results.
+    /// Why: when the film changes fast (a cavity collapsing, the feed cut off) the end-of-step
+    /// root can lie outside Newton's reach from the extrapolated guess; a shorter step moves
+    /// the guess and the squeeze term closer. 0 disables it.
+    pub max_step_splits: usize,
     /// Largest |Δε| of one Newton update (default 0.2).
     pub max_newton_step: f64,
     /// |ε| at or beyond which the film has collapsed (default 0.999).
@@ -82,6 +89,7 @@ impl Default for InverseParams {
             fd_step: 1e-6,
             accept_tolerance: 1e-2,
             max_newton_iterations: 40,
+            max_step_splits: 4,
             max_newton_step: 0.2,
             collapse_eccentricity: 0.999,
             min_film_floor: 0.0,
@@ -284,6 +292,8 @@ pub struct InverseInfo {
     /// the largest such residual (0 if none).
     pub stalled_steps: usize,
     pub max_stalled_residual: f64,
+    /// Time steps that needed halving ([`InverseParams::max_step_splits`]) to converge.
+    pub split_steps: usize,
     /// Wall-clock time of the whole run (s).
     pub wall_time: f64,
 }
@@ -369,6 +379,7 @@ struct Stats {
     sweeps: usize,
     stalled: usize,
     max_stalled: f64,
+    split: usize,
 }
 
 /// The Jacobian ∂F/∂ε carried across steps.
@@ -499,8 +510,14 @@ where
             cycle: 0,
         };
         let guess = predict(eps, eps_prev);
-        let acc = newton(
-            params, film, &state, guess, dt, &cond0, w, w_ref, &mut jac, &mut stats, at,
+        // The ramp as a function of time, for the midpoints of split steps.
+        let ramp = |tt: f64| {
+            let s = smoothstep(((run_in as f64 + tt / dt) / run_in as f64).clamp(0.0, 1.0));
+            Ok(([s * w0[0], s * w0[1]], cond0.clone()))
+        };
+        debug_assert!((ramp(t).map(|r| r.0[1]).unwrap_or(0.0) - w[1]).abs() <= 1e-9 * norm(w0));
+        let acc = advance(
+            params, film, &state, eps, guess, t, dt, &ramp, w_ref, &mut jac, &mut stats, at, 0,
         )?;
         eps_prev = eps;
         eps = acc.eps;
@@ -550,8 +567,9 @@ where
                 cycle,
             };
             let guess = predict(eps, eps_prev);
-            let acc = newton(
-                params, film, &state, guess, dt, &cond, w, w_ref, &mut jac, &mut stats, at,
+            let drive = |tt: f64| Ok((load.load(tt), conditions_at(tt)?));
+            let acc = advance(
+                params, film, &state, eps, guess, t, dt, &drive, w_ref, &mut jac, &mut stats, at, 0,
             )?;
             if params.field_stride > 0 && i % params.field_stride == 0 {
                 film.set_capture_fields(true);
@@ -641,6 +659,7 @@ where
             sweep_iterations: stats.sweeps,
             stalled_steps: stats.stalled,
             max_stalled_residual: stats.max_stalled,
+            split_steps: stats.split,
             wall_time: start.elapsed().as_secs_f64(),
         },
     })
@@ -781,6 +800,82 @@ fn summarize(steps: &[InverseStep]) -> CycleSummary {
         max_power_loss: argmax(&|s| s.power_loss).0,
         mean_friction_torque_journal: mean(&|s| s.friction_torque_journal),
         mean_friction_torque_bearing: mean(&|s| s.friction_torque_bearing),
+    }
+}
+
+/// Load and film conditions at a time, for [`advance`].
+type Drive<'a> = dyn Fn(f64) -> Result<([f64; 2], FilmConditions), InverseError> + 'a;
+
+/// One time step from (`state`, `eps`) at `t_end − dt` to `t_end`. When Newton fails the step
+/// is retried as two half steps (the load and conditions of the midpoint from `drive`, the film
+/// state carried through it), recursively up to [`InverseParams::max_step_splits`] halvings.
+/// The Jacobian is refreshed by differences at every change of step length (the squeeze term
+/// scales with 1/dt). Collapse and film errors are not retried: a smaller step cannot cure them.
+#[allow(clippy::too_many_arguments)]
+fn advance<F: FilmModel + ?Sized>(
+    params: &InverseParams,
+    film: &mut F,
+    state: &F::State,
+    eps: [f64; 2],
+    guess: [f64; 2],
+    t_end: f64,
+    dt: f64,
+    drive: &Drive<'_>,
+    w_ref: f64,
+    jac: &mut Jacobian,
+    stats: &mut Stats,
+    at: Where,
+    depth: usize,
+) -> Result<Accepted<F::State>, InverseError> {
+    let (w, cond) = drive(t_end)?;
+    match newton(
+        params, film, state, guess, dt, &cond, w, w_ref, jac, stats, at,
+    ) {
+        Err(InverseError::NewtonFailed { .. }) if depth < params.max_step_splits => {
+            if depth == 0 {
+                stats.split += 1;
+            }
+            let half = 0.5 * dt;
+            let t_mid = t_end - half;
+            let at_mid = Where { time: t_mid, ..at };
+            jac.valid = false;
+            let mid_guess = predict(eps, [2.0 * eps[0] - guess[0], 2.0 * eps[1] - guess[1]]);
+            let mid_guess = [0.5 * (eps[0] + mid_guess[0]), 0.5 * (eps[1] + mid_guess[1])];
+            let first = advance(
+                params,
+                film,
+                state,
+                eps,
+                mid_guess,
+                t_mid,
+                half,
+                drive,
+                w_ref,
+                jac,
+                stats,
+                at_mid,
+                depth + 1,
+            )?;
+            let end_guess = predict(first.eps, eps);
+            let last = advance(
+                params,
+                film,
+                &first.state,
+                first.eps,
+                end_guess,
+                t_end,
+                half,
+                drive,
+                w_ref,
+                jac,
+                stats,
+                at,
+                depth + 1,
+            );
+            jac.valid = false;
+            last
+        }
+        other => other,
     }
 }
 
@@ -1227,5 +1322,86 @@ mod tests {
             Some(InverseWarning::NotPeriodic { cycles: 2, .. })
         ));
         assert!((sol.summary.mean_power_loss - 1.0).abs() < 1e-12);
+    }
+
+    /// A film that can only move a short way in one step: beyond |ε − ε_old| = `reach` it
+    /// pushes back with a force larger than any load, so a step whose equilibrium lies further
+    /// has no root at all (a stand-in for a JFO film whose cavity collapses within a step).
+    struct ShortReach {
+        k: f64,
+        reach: f64,
+    }
+
+    impl FilmModel for ShortReach {
+        type State = [f64; 2];
+        fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
+            e
+        }
+        fn step(
+            &mut self,
+            s: &[f64; 2],
+            e: [f64; 2],
+            _dt: f64,
+            _c: &FilmConditions,
+        ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
+            let d = [e[0] - s[0], e[1] - s[1]];
+            let mut f = [-self.k * e[0], -self.k * e[1]];
+            if norm(d) > self.reach {
+                let g = 10.0 * self.k / norm(d);
+                f = [f[0] - g * d[0], f[1] - g * d[1]];
+            }
+            Ok((
+                FilmResponse {
+                    film_force: f,
+                    min_film_thickness: 1.0 - norm(e),
+                    power_loss: 1.0,
+                    ..Default::default()
+                },
+                e,
+            ))
+        }
+    }
+
+    #[test]
+    fn a_step_newton_cannot_take_is_split_until_it_can() {
+        // Equilibrium ε = W/k = (−0.6 sin 2πt, 0): 8 steps per cycle move it by up to 0.42, the
+        // film reaches 0.2 per step: halves (0.21) still fail somewhere, quarters (0.11) pass.
+        let load = OperatingHistory {
+            load: FnLoad {
+                period: 1.0,
+                load: |t: f64| [-60.0 * (TAU * t).sin(), 0.0],
+            },
+            journal_speed: 1.0,
+            bearing_speed: 0.0,
+            feed_pressures: vec![],
+        };
+        let params = InverseParams {
+            step_deg: 45.0,
+            tolerance: 1e-10,
+            jacobian: JacobianMethod::FiniteDifference,
+            max_cycles: 2,
+            ..Default::default()
+        };
+        let mut film = ShortReach {
+            k: 100.0,
+            reach: 0.2,
+        };
+        let sol = solve_inverse(&params, &load, &mut film, &mut NoObserver).unwrap();
+        assert!(sol.info.split_steps > 0);
+        for st in &sol.steps {
+            let want = -0.6 * (TAU * st.time).sin();
+            assert!((st.eccentricity_ratio[0] - want).abs() < 1e-9, "{st:?}");
+        }
+        // Without splitting the same run is a Newton failure naming the step, not NaN.
+        let strict = InverseParams {
+            max_step_splits: 0,
+            ..params
+        };
+        let mut film = ShortReach {
+            k: 100.0,
+            reach: 0.2,
+        };
+        let err = solve_inverse(&strict, &load, &mut film, &mut NoObserver).unwrap_err();
+        assert!(matches!(err, InverseError::NewtonFailed { .. }), "{err}");
     }
 }
