@@ -232,12 +232,21 @@ impl RunInfo {
     pub fn for_this_build(wall_time: f64, started_utc: &str) -> Self {
         Self {
             jbearing_version: env!("CARGO_PKG_VERSION").to_string(),
-            git_commit: git_describe(Path::new(env!("CARGO_MANIFEST_DIR")))
-                .unwrap_or_else(|| "unknown".into()),
+            git_commit: build_commit().to_string(),
             wall_time,
             started_utc: started_utc.into(),
         }
     }
+}
+
+/// The commit of this build, asked of git once per process: a child process forked while another
+/// thread has an HDF5 file open inherits its descriptor and `flock` lock (HDF5 does not open with
+/// `O_CLOEXEC`), so batches should spawn as few children as possible.
+fn build_commit() -> &'static str {
+    static COMMIT: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    COMMIT.get_or_init(|| {
+        git_describe(Path::new(env!("CARGO_MANIFEST_DIR"))).unwrap_or_else(|| "unknown".into())
+    })
 }
 
 fn git_describe(dir: &Path) -> Option<String> {
