@@ -14,13 +14,11 @@
 //!    load capacity (at L/D = 0.4 the film above is ~50 % below the short-bearing load).
 
 use jbearing_solvers::mobility::{
-    BookerShortBearing, LoadInterpolation, MobilityMap, MobilityMapParams, MobilityModel,
-    MobilityParams, OrbitParams, PureSqueezeFilm, TabulatedLoad, short_bearing_squeeze_integral,
-    solve_orbit,
+    BookerShortBearing, MobilityMap, MobilityMapParams, MobilityModel, PureSqueezeFilm,
+    short_bearing_squeeze_integral, solve_orbit,
 };
 use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
-use std::f64::consts::TAU;
-use std::path::Path;
+use jbearing_validation::flores2006;
 use std::time::Instant;
 
 fn film(ld: f64, n: usize, m: usize) -> ReynoldsSqueezeFilm {
@@ -131,32 +129,12 @@ fn map_at_half_length_reproduces_direct_squeeze_solves() {
 
 #[test]
 fn flores_example_with_the_finite_length_map_runs_thinner_than_the_short_bearing() {
-    // Seed 000 Table 1 (clearance 35.56 µm: the table's "mm" is a slip) and the Bouldin & Berker
-    // load of shared/reference/flores2006_load.csv, 2000 rpm, fixed bearing.
-    let omega = 2000.0 * TAU / 60.0;
-    let bearing = MobilityParams {
-        radius: 0.5 * 63.5e-3,
-        length: 25.4e-3,
-        radial_clearance: 35.56e-6,
-        viscosity: 4.16e-3,
-        omega_journal: omega,
-        omega_bearing: 0.0,
-    };
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/reference/flores2006_load.csv");
-    let text = std::fs::read_to_string(path).expect("flores2006_load.csv");
-    let (mut a, mut f) = (Vec::new(), Vec::new());
-    for line in text.lines().skip(1) {
-        let mut c = line
-            .split(',')
-            .map(|x| x.trim().parse::<f64>().expect("number"));
-        a.push(c.next().expect("angle"));
-        f.push(c.next().expect("load") * 1e3);
-    }
-    let load =
-        TabulatedLoad::unidirectional(a, &f, [0.0, -1.0], 720.0, omega, LoadInterpolation::Linear)
-            .expect("load");
-    let mut p = OrbitParams::new(bearing);
-    p.initial_eccentricity = [0.1 * 1.5f64.sin(), -0.1 * 1.5f64.cos()];
+    // Seed 000 Table 1 and the Bouldin & Berker load (see `jbearing_validation::flores2006`).
+    let (bearing, load, p) = (
+        flores2006::bearing(),
+        flores2006::load(),
+        flores2006::orbit_params(),
+    );
     let ld = bearing.length_to_diameter();
     let t = Instant::now();
     let map = MobilityMap::build(

@@ -8,38 +8,17 @@
 //! orbits themselves to 1e-3 in ε (the cycle-to-cycle periodicity tolerance is 1e-6).
 
 use jbearing_solvers::mobility::{
-    ExactShortBearing, LoadInterpolation, MobilityMap, MobilityMapParams, MobilityParams,
-    OrbitParams, ShortBearingSqueeze, TabulatedLoad, solve_orbit,
+    ExactShortBearing, MobilityMap, MobilityMapParams, ShortBearingSqueeze, solve_orbit,
 };
-use std::f64::consts::TAU;
-use std::path::Path;
+use jbearing_validation::flores2006;
 
 #[test]
 fn short_bearing_map_reproduces_the_exact_short_bearing_orbit() {
-    let omega = 2000.0 * TAU / 60.0;
-    let bearing = MobilityParams {
-        radius: 0.5 * 63.5e-3,
-        length: 25.4e-3,
-        radial_clearance: 35.56e-6,
-        viscosity: 4.16e-3,
-        omega_journal: omega,
-        omega_bearing: 0.0,
-    };
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/reference/flores2006_load.csv");
-    let text = std::fs::read_to_string(path).expect("flores2006_load.csv");
-    let (mut a, mut f) = (Vec::new(), Vec::new());
-    for line in text.lines().skip(1) {
-        let mut c = line
-            .split(',')
-            .map(|x| x.trim().parse::<f64>().expect("number"));
-        a.push(c.next().expect("angle"));
-        f.push(c.next().expect("load") * 1e3);
-    }
-    let load =
-        TabulatedLoad::unidirectional(a, &f, [0.0, -1.0], 720.0, omega, LoadInterpolation::Linear)
-            .expect("load");
-    let mut p = OrbitParams::new(bearing);
-    p.initial_eccentricity = [0.1 * 1.5f64.sin(), -0.1 * 1.5f64.cos()];
+    let (bearing, load, p) = (
+        flores2006::bearing(),
+        flores2006::load(),
+        flores2006::orbit_params(),
+    );
 
     let ld = bearing.length_to_diameter();
     let map = MobilityMap::build(
