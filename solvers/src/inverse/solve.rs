@@ -933,6 +933,42 @@ fn newton<F: FilmModel + ?Sized>(
         residual: res,
     };
 
+    // Newton cannot reach `tolerance` (iteration limit, or no descent on a fresh Jacobian): the
+    // best point is accepted as a stall if within `accept_tolerance`, else the step fails. (|ε|
+    // below the collapse limit was checked at the top of the iteration that produced `eps`.)
+    let give_up = |stats: &mut Stats,
+                   eps: [f64; 2],
+                   resp: FilmResponse,
+                   st: F::State,
+                   res: f64,
+                   iterations: usize|
+     -> Result<Accepted<F::State>, InverseError> {
+        stats.newton += iterations;
+        if res > params.accept_tolerance {
+            return Err(InverseError::NewtonFailed {
+                time: at.time,
+                crank_angle_deg: at.crank_angle_deg,
+                cycle: at.cycle,
+                iterations,
+                residual: res,
+                eccentricity_ratio: eps,
+            });
+        }
+        stats.stalled += 1;
+        stats.max_stalled = stats.max_stalled.max(res);
+        stats.max_newton = stats.max_newton.max(iterations);
+        if resp.min_film_thickness < params.min_film_floor {
+            return Err(collapse(eps, resp.min_film_thickness, res));
+        }
+        Ok(Accepted {
+            eps,
+            response: resp,
+            state: st,
+            residual: res,
+            iterations,
+        })
+    };
+
     let mut eps = guess;
     let (mut resp, mut st, mut r) = eval(eps, stats)?;
     let mut res = norm(r) / scale;
@@ -961,30 +997,7 @@ fn newton<F: FilmModel + ?Sized>(
             });
         }
         if iterations >= params.max_newton_iterations {
-            stats.newton += iterations;
-            if res <= params.accept_tolerance {
-                stats.stalled += 1;
-                stats.max_stalled = stats.max_stalled.max(res);
-                stats.max_newton = stats.max_newton.max(iterations);
-                if resp.min_film_thickness < params.min_film_floor {
-                    return Err(collapse(eps, resp.min_film_thickness, res));
-                }
-                return Ok(Accepted {
-                    eps,
-                    response: resp,
-                    state: st,
-                    residual: res,
-                    iterations,
-                });
-            }
-            return Err(InverseError::NewtonFailed {
-                time: at.time,
-                crank_angle_deg: at.crank_angle_deg,
-                cycle: at.cycle,
-                iterations,
-                residual: res,
-                eccentricity_ratio: eps,
-            });
+            return give_up(stats, eps, resp, st, res, iterations);
         }
         iterations += 1;
         if !jac.valid || params.jacobian == JacobianMethod::FiniteDifference {
@@ -1059,32 +1072,7 @@ fn newton<F: FilmModel + ?Sized>(
                 continue;
             }
             if fresh {
-                stats.newton += iterations;
-                if res <= params.accept_tolerance {
-                    stats.stalled += 1;
-                    stats.max_stalled = stats.max_stalled.max(res);
-                    stats.max_newton = stats.max_newton.max(iterations);
-                    if norm(eps) >= params.collapse_eccentricity
-                        || resp.min_film_thickness < params.min_film_floor
-                    {
-                        return Err(collapse(eps, resp.min_film_thickness, res));
-                    }
-                    return Ok(Accepted {
-                        eps,
-                        response: resp,
-                        state: st,
-                        residual: res,
-                        iterations,
-                    });
-                }
-                return Err(InverseError::NewtonFailed {
-                    time: at.time,
-                    crank_angle_deg: at.crank_angle_deg,
-                    cycle: at.cycle,
-                    iterations,
-                    residual: res,
-                    eccentricity_ratio: eps,
-                });
+                return give_up(stats, eps, resp, st, res, iterations);
             }
             jac.valid = false;
         }
