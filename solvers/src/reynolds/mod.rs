@@ -465,11 +465,25 @@ impl ReynoldsSolver {
     }
 
     /// One implicit time step from `state` (ε and φ at t_n) to `input.eccentricity_ratio` at
-    /// t_n + dt. The squeeze enters through h at both levels (design.md §2).
+    /// t_n + dt. The squeeze enters through h at both levels (design.md §2). The iterations
+    /// start from `state`'s φ and g.
     pub fn solve_step(
         &mut self,
         state: &FilmState,
         input: &StepInput,
+    ) -> Result<(FilmSolution, FilmState), ReynoldsError> {
+        self.solve_step_from(state, input, None)
+    }
+
+    /// [`solve_step`](Self::solve_step) with the iterations started from `start`'s φ and g
+    /// instead of `state`'s: the answer of a nearby step from the same `state` (a previous
+    /// Newton iterate of the inverse solver) needs fewer switch and Krylov iterations. The
+    /// answer is the same discrete solution to `tolerance`; `start` must be of the same grid.
+    pub fn solve_step_from(
+        &mut self,
+        state: &FilmState,
+        input: &StepInput,
+        start: Option<&FilmState>,
     ) -> Result<(FilmSolution, FilmState), ReynoldsError> {
         if self.params.supply != SupplyModel::Grooves {
             return Err(ReynoldsError::Unsupported {
@@ -507,8 +521,19 @@ impl ReynoldsSolver {
                 .map(|a| a.iter().copied().collect()),
             TimeScheme::BackwardEuler => None,
         };
-        let psi0: Vec<f64> = state.density_ratio.iter().map(|phi| phi - 1.0).collect();
-        let g0: Vec<f64> = state
+        let first = match start {
+            Some(f) if f.density_ratio.len() == n && f.full_film.len() == n => f,
+            Some(f) => {
+                return Err(ReynoldsError::InvalidParameter {
+                    name: "start",
+                    value: f.density_ratio.len() as f64,
+                    reason: "start fields do not match the grid size",
+                });
+            }
+            None => state,
+        };
+        let psi0: Vec<f64> = first.density_ratio.iter().map(|phi| phi - 1.0).collect();
+        let g0: Vec<f64> = first
             .full_film
             .iter()
             .map(|&f| if f { 1.0 } else { 0.0 })
@@ -523,6 +548,7 @@ impl ReynoldsSolver {
             &input.conditions,
             time,
             Some((psi0, g0)),
+            start.is_some(),
         )?;
         let sol = outputs::film_solution(
             &self.params,
@@ -587,7 +613,13 @@ impl ReynoldsSolver {
                 reason: "a steady film needs a surface speed (a pure squeeze has no steady state)",
             });
         }
-        self.solve_core(eccentricity_ratio, conditions, TimeTerm::Steady, None)
+        self.solve_core(
+            eccentricity_ratio,
+            conditions,
+            TimeTerm::Steady,
+            None,
+            false,
+        )
     }
 
     fn set_grid(&mut self, theta0: f64) -> Result<(), ReynoldsError> {
@@ -606,6 +638,7 @@ impl ReynoldsSolver {
         conditions: &OperatingConditions,
         time: TimeTerm,
         warm: Option<(Vec<f64>, Vec<f64>)>,
+        start_tight: bool,
     ) -> Result<Core, ReynoldsError> {
         check_eps(eps)?;
         let p = &self.params;
@@ -696,7 +729,10 @@ impl ReynoldsSolver {
         // tolerance; once g stops changing, a tight solve confirms it (and the loop goes on if
         // that solve changes g after all).
         let loose = (p.tolerance * 1e4).min(1e-6).max(p.tolerance);
-        let mut tight = p.linear_solver == LinearSolver::SparseLu;
+        // A start from a nearby answer (`start_tight`) is likely to have the final g already:
+        // solve tightly at once, and go back to loose solves only if g changes.
+        let always_tight = p.linear_solver == LinearSolver::SparseLu;
+        let mut tight = always_tight || start_tight;
         loop {
             iteration += 1;
             discretization::assemble(&level, &g, &self.dirichlet, time, &mut self.stencil);
@@ -757,6 +793,7 @@ impl ReynoldsSolver {
                 tight = true;
                 continue;
             }
+            tight = always_tight;
             if iteration >= p.max_switch_iterations {
                 return Err(ReynoldsError::SwitchNotConverged {
                     iterations: iteration,

@@ -131,3 +131,59 @@ fn crank_nicolson_steps_balance_mass() {
     }
     assert!(worst < 1e-8, "worst CN step balance {worst:e}");
 }
+
+/// A step started from a nearby answer (`solve_step_from`, as the inverse solver's Newton
+/// iterates do) reaches the same discrete solution as a start from the old state: the switch
+/// field agrees node for node and the film force to the solve tolerance. (What it saves is
+/// measured by the inverse benchmarks, not here.)
+#[test]
+fn a_step_started_from_a_nearby_answer_gives_the_same_film() {
+    let mut s = ReynoldsSolver::new(grooved(LinearSolver::AdiKrylov)).unwrap();
+    let c = conditions(2e5);
+    let dt = 1e-4;
+    // A film whirling at ε = 0.6 for 30 steps, then one step to two nearby trial positions.
+    let mut state = s.initial_state([0.6, 0.0]);
+    for n in 1..=30 {
+        let a = 0.02 * n as f64;
+        let input = StepInput {
+            eccentricity_ratio: [0.6 * a.cos(), 0.6 * a.sin()],
+            dt,
+            conditions: c.clone(),
+        };
+        state = s.solve_step(&state, &input).unwrap().1;
+    }
+    let a: f64 = 0.62;
+    let trial = |d: f64| StepInput {
+        eccentricity_ratio: [(0.6 + d) * a.cos(), (0.6 + d) * a.sin()],
+        dt,
+        conditions: c.clone(),
+    };
+    let (_, nearby) = s.solve_step(&state, &trial(0.0)).unwrap();
+    let (cold, cold_state) = s.solve_step(&state, &trial(1e-3)).unwrap();
+    let (warm, warm_state) = s
+        .solve_step_from(&state, &trial(1e-3), Some(&nearby))
+        .unwrap();
+    assert_eq!(cold_state.full_film, warm_state.full_film);
+    let f = cold.load_capacity;
+    for k in 0..2 {
+        assert!(
+            (cold.film_force[k] - warm.film_force[k]).abs() < 1e-8 * f,
+            "force {:?} vs {:?}",
+            cold.film_force,
+            warm.film_force
+        );
+    }
+    // A start of another grid is an error, not a panic.
+    let mut small = grooved(LinearSolver::AdiKrylov);
+    small.grid = GridParams {
+        n_theta: 36,
+        n_z: 9,
+    };
+    let other = ReynoldsSolver::new(small)
+        .unwrap()
+        .initial_state([0.0, 0.0]);
+    assert!(matches!(
+        s.solve_step_from(&state, &trial(1e-3), Some(&other)),
+        Err(ReynoldsError::InvalidParameter { name: "start", .. })
+    ));
+}
