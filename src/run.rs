@@ -921,25 +921,21 @@ pub fn run_case_file(
     Ok(CaseOutcome { report, files })
 }
 
-/// Current time as ISO 8601 UTC, without a date crate (civil-from-days, H. Hinnant).
+/// Current time as ISO 8601 UTC, to the second.
 pub fn now_utc() -> String {
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs() as i64);
-    let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = doy - (153 * mp + 2) / 5 + 1;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 };
-    let y = yoe + era * 400 + i64::from(m <= 2);
-    format!(
-        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
-        rem / 3600,
-        rem % 3600 / 60,
-        rem % 60
-    )
+    jiff::Timestamp::now()
+        .strftime("%Y-%m-%dT%H:%M:%SZ")
+        .to_string()
+}
+
+#[cfg(test)]
+mod timestamp_tests {
+    /// ISO 8601 UTC to the second: `YYYY-MM-DDTHH:MM:SSZ`, parseable back.
+    #[test]
+    fn now_utc_is_iso8601_to_the_second() {
+        let s = super::now_utc();
+        assert_eq!(s.len(), 20, "{s}");
+        assert!(s.ends_with('Z') && s.as_bytes()[10] == b'T', "{s}");
+        assert!(s.parse::<jiff::Timestamp>().is_ok(), "{s}");
+    }
 }
