@@ -1,0 +1,211 @@
+//! Timing report of the inverse solver with the mass-conserving Reynolds film (issue 4, item 6):
+//! one load cycle of a bearing the size of the compressor main bearing, where the time goes,
+//! and how it scales with grid size and step count.
+//!
+//! Bearing (design.md §7): L = 18.288 mm, R = 27.43 mm, c = 48.9 µm, partial groove
+//! 24.9 × 3.81 mm at θ = 90° fed at 0.2068 MPa, 1800 rpm, μ = 0.02 Pa·s (assumed). Load: the
+//! synthetic compressor-like cycle of the inverse benches (a 4 kN pulse once per turn on 0.8 kN,
+//! plus a 0.6 kN second-order side load). Each run is the run-in (a quarter cycle) plus one
+//! cycle (`max_cycles = 1`; the run-in's cost is reported apart).
+//!
+//! Times are CPU time of this thread (`CLOCK_THREAD_CPUTIME_ID`), so other processes on a
+//! shared machine do not inflate them; one core, release build. "Film" is the time inside
+//! `FilmModel::step` (one Reynolds time step: assembly, switch loop with ADI-Krylov solves,
+//! outputs); "Newton" is everything else (the 2 × 2 Newton/Broyden algebra, bookkeeping,
+//! recording). Rows:
+//!
+//! - the default grid 120 × 31 at the default step 1°: the issue's benchmark;
+//! - grid scaling at 1°: 60 × 15, 120 × 31, 240 × 61;
+//! - step scaling at 120 × 31: 2°, 1°, 0.5°.
+//!
+//! Usage: `cargo run --release -p jbearing-validation --bin inverse_timing [-- --quick]`
+//! (`--quick`: the 60 × 15 rows only, to check that it runs).
+
+use anyhow::{Context, Result};
+use jbearing_solvers::inverse::{
+    FilmConditions, FilmModel, FilmModelError, FilmResponse, InverseParams, InverseSolution,
+    NoObserver, ReynoldsFilm, solve_inverse,
+};
+use jbearing_solvers::load::{FnLoad, OperatingHistory};
+use jbearing_solvers::reynolds::{FilmState, GridParams, Groove, ReynoldsParams};
+use std::f64::consts::{PI, TAU};
+
+const OMEGA: f64 = 1800.0 * TAU / 60.0;
+
+fn pulse_load(t: f64) -> [f64; 2] {
+    let a = OMEGA * t;
+    [
+        600.0 * (2.0 * a).sin(),
+        -800.0 - 4000.0 * (0.5 * (1.0 - a.cos())).powi(4),
+    ]
+}
+
+fn thread_cpu_seconds() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid, writable timespec; CLOCK_THREAD_CPUTIME_ID is supported by every
+    // Linux kernel since 2.6.12.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
+    assert_eq!(rc, 0, "clock_gettime(CLOCK_THREAD_CPUTIME_ID) failed");
+    t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
+}
+
+/// The Reynolds film with a stopwatch around each step.
+struct TimedFilm {
+    inner: ReynoldsFilm,
+    film_seconds: f64,
+    krylov_iterations: usize,
+}
+
+impl FilmModel for TimedFilm {
+    type State = FilmState;
+
+    fn initial_state(&self, eccentricity_ratio: [f64; 2]) -> FilmState {
+        self.inner.initial_state(eccentricity_ratio)
+    }
+
+    fn step(
+        &mut self,
+        state: &FilmState,
+        eccentricity_ratio: [f64; 2],
+        dt: f64,
+        conditions: &FilmConditions,
+    ) -> Result<(FilmResponse, FilmState), FilmModelError> {
+        let t0 = thread_cpu_seconds();
+        let out = self.inner.step(state, eccentricity_ratio, dt, conditions);
+        self.film_seconds += thread_cpu_seconds() - t0;
+        if let Ok((resp, _)) = &out {
+            self.krylov_iterations += resp.sweep_iterations;
+        }
+        out
+    }
+
+    fn state_change(&self, a: &FilmState, b: &FilmState) -> f64 {
+        self.inner.state_change(a, b)
+    }
+
+    fn set_capture_fields(&mut self, capture: bool) {
+        self.inner.set_capture_fields(capture);
+    }
+}
+
+fn reynolds_params(n_theta: usize, n_z: usize) -> ReynoldsParams {
+    let mut p = ReynoldsParams::plain(27.43e-3, 18.288e-3, 48.9e-6, 0.02);
+    p.grid = GridParams { n_theta, n_z };
+    p.grooves = vec![Groove {
+        center_angle: 0.5 * PI,
+        center_z: 0.0,
+        angular_width: 24.9e-3 / 27.43e-3,
+        axial_width: 3.81e-3,
+        cutoff_film_fraction: 0.01,
+    }];
+    p
+}
+
+struct Row {
+    grid: (usize, usize),
+    step_deg: f64,
+    total: f64,
+    film: f64,
+    krylov: usize,
+    solution: InverseSolution,
+}
+
+fn run(n_theta: usize, n_z: usize, step_deg: f64) -> Result<Row> {
+    let load = OperatingHistory {
+        load: FnLoad {
+            period: TAU / OMEGA,
+            load: pulse_load,
+        },
+        journal_speed: OMEGA,
+        bearing_speed: 0.0,
+        feed_pressures: vec![0.2068e6],
+    };
+    let mut film = TimedFilm {
+        inner: ReynoldsFilm::new(reynolds_params(n_theta, n_z))?,
+        film_seconds: 0.0,
+        krylov_iterations: 0,
+    };
+    let params = InverseParams {
+        step_deg,
+        max_cycles: 1,
+        ..Default::default()
+    };
+    let t0 = thread_cpu_seconds();
+    let solution = solve_inverse(&params, &load, &mut film, &mut NoObserver)
+        .with_context(|| format!("{n_theta} × {n_z}, {step_deg}°"))?;
+    let total = thread_cpu_seconds() - t0;
+    Ok(Row {
+        grid: (n_theta, n_z),
+        step_deg,
+        total,
+        film: film.film_seconds,
+        krylov: film.krylov_iterations,
+        solution,
+    })
+}
+
+fn machine() -> String {
+    let info = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
+    let model = info
+        .lines()
+        .find_map(|l| l.strip_prefix("model name"))
+        .map(|l| l.trim_start_matches([' ', '\t', ':']).to_string())
+        .unwrap_or_else(|| "unknown CPU".into());
+    let cpus = info.lines().filter(|l| l.starts_with("processor")).count();
+    format!("{model}, {cpus} logical CPUs")
+}
+
+fn main() -> Result<()> {
+    let quick = std::env::args().any(|a| a == "--quick");
+    let plan: Vec<(usize, usize, f64)> = if quick {
+        vec![(60, 15, 2.0), (60, 15, 1.0)]
+    } else {
+        vec![
+            (120, 31, 1.0),
+            (60, 15, 1.0),
+            (240, 61, 1.0),
+            (120, 31, 2.0),
+            (120, 31, 0.5),
+        ]
+    };
+    println!(
+        "Machine: {}. Measured: {}. Thread CPU time, one core, release build.\n",
+        machine(),
+        jiff::Timestamp::now().strftime("%Y-%m-%d %H:%M UTC")
+    );
+    println!(
+        "| grid | step | run-in + cycle (s) | per cycle (s) | film / Newton share | film steps per time step | ms per film step | Krylov iterations per film step | stalled / split steps | cycle min h_min (µm) | mean power (W) |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    for (nt, nz, step) in plan {
+        let r = run(nt, nz, step)?;
+        let info = &r.solution.info;
+        let steps = info.run_in_steps + info.steps_per_cycle;
+        let per_cycle = r.total * info.steps_per_cycle as f64 / steps as f64;
+        let evals = info.film_evaluations as f64;
+        println!(
+            "| {} × {} | {}° | {:.1} | {:.1} | {:.1} % / {:.1} % | {:.2} | {:.2} | {:.1} | {} / {} | {:.3} | {:.2} |",
+            r.grid.0,
+            r.grid.1,
+            r.step_deg,
+            r.total,
+            per_cycle,
+            100.0 * r.film / r.total,
+            100.0 * (r.total - r.film) / r.total,
+            evals / steps as f64,
+            1e3 * r.film / evals,
+            r.krylov as f64 / evals,
+            info.stalled_steps,
+            info.split_steps,
+            1e6 * r.solution.summary.min_film_thickness,
+            r.solution.summary.mean_power_loss,
+        );
+    }
+    println!(
+        "\n\"per cycle\" scales the run-in + cycle time by (cycle steps) / (run-in + cycle steps)."
+    );
+    Ok(())
+}
