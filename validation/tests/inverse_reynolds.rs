@@ -170,9 +170,8 @@ fn half_speed_whirl_load_collapses() {
 ///
 /// 48 × 13 keeps the three periodic runs (2°, 1°, 0.5°; 3 cycles each) near 12 s: the test is
 /// about the time discretisation, so the three runs share one grid. Measured 2026-11-23:
-/// h_min 4.2202 / 4.1416 / 4.1206 µm, power 58.179 / 58.359 / 58.458 W (1° → 0.5°: 0.51 %,
-/// 0.17 %); on 60 × 15: 0.49 %, 0.13 %. Backward Euler is first order, so each halving roughly
-/// halves the change.
+/// h_min 4.2187 / 4.1437 / 4.1188 µm, power 58.181 / 58.356 / 58.441 W (1° → 0.5°: 0.60 %,
+/// 0.15 %). Backward Euler is first order, so each halving roughly halves the change.
 #[test]
 fn halving_the_default_step_changes_h_min_and_power_loss_by_less_than_one_percent() {
     let load = history(FnLoad {
