@@ -18,7 +18,6 @@ use jbearing_solvers::mobility::{
     MobilityModel, MobilityParams, OrbitInfo, OrbitParams, PeriodicLoad, solve_orbit,
 };
 
-use jbearing_solvers::closed_form::{ClosedFormModel, ClosedFormParams, static_equilibrium};
 use jbearing_solvers::inverse::{
     InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, ReynoldsFilm,
     ShortBearingFilm, ShortBearingParams, TimeScheme, solve_inverse,
@@ -91,16 +90,6 @@ pub enum RunError {
         /// Case name.
         case: String,
         /// The solver's error.
-        message: String,
-    },
-    /// A closed-form equilibrium failed.
-    #[error("case '{case}': closed-form equilibrium ({model}): {message}")]
-    ClosedForm {
-        /// Case name.
-        case: String,
-        /// The model.
-        model: &'static str,
-        /// The error.
         message: String,
     },
     /// Writing the results failed.
@@ -731,77 +720,6 @@ fn mobility_result(
     }
 }
 
-/// The static-equilibrium table of the closed-form models (seed 004) under the cycle-mean load
-/// at the cycle-mean relative speed ω_j − ω_b, as report parameters
-/// `closed_form_<model>_{eccentricity_ratio, attitude_angle, min_film_thickness,
-/// sommerfeld_number}`. For a constant load this is the steady answer; for a dynamic load it is
-/// the designer's first static estimate.
-pub fn closed_form_equilibria(case: &Case) -> Result<Vec<Parameter>, RunError> {
-    let load = case.load();
-    let n = 720;
-    let mut mean = [0.0; 2];
-    for k in 0..n {
-        let w = load.load_at_crank_angle(case.cycle_deg * k as f64 / n as f64);
-        mean[0] += w[0] / n as f64;
-        mean[1] += w[1] / n as f64;
-    }
-    let speed = case.journal_speed.mean(case.cycle_deg) - case.bearing_speed.mean(case.cycle_deg);
-    let params = ClosedFormParams {
-        radius: case.radius,
-        length: case.length,
-        radial_clearance: case.radial_clearance,
-        viscosity: case.viscosity,
-    };
-    let mut out = vec![
-        Parameter::number(
-            "closed_form_load_x",
-            mean[0],
-            "N",
-            "closed-form equilibria: cycle-mean load, x",
-        ),
-        Parameter::number(
-            "closed_form_load_y",
-            mean[1],
-            "N",
-            "closed-form equilibria: cycle-mean load, y",
-        ),
-    ];
-    for model in ClosedFormModel::ALL {
-        let e =
-            static_equilibrium(model, &params, mean, speed).map_err(|e| RunError::ClosedForm {
-                case: case.name.clone(),
-                model: model.name(),
-                message: e.to_string(),
-            })?;
-        let k = |q: &str| format!("closed_form_{}_{q}", model.name());
-        out.push(Parameter::number(
-            &k("eccentricity_ratio"),
-            e.eccentricity_ratio,
-            "1",
-            "static equilibrium: eccentricity ratio",
-        ));
-        out.push(Parameter::number(
-            &k("attitude_angle"),
-            e.attitude_angle,
-            "rad",
-            "static equilibrium: attitude angle from the load line",
-        ));
-        out.push(Parameter::number(
-            &k("min_film_thickness"),
-            e.min_film_thickness,
-            "m",
-            "static equilibrium: minimum film thickness",
-        ));
-        out.push(Parameter::number(
-            &k("sommerfeld_number"),
-            e.sommerfeld_number,
-            "1",
-            "static equilibrium: Sommerfeld number",
-        ));
-    }
-    Ok(out)
-}
-
 /// The summary table of a report from its methods.
 pub fn summary_rows(methods: &[MethodResult]) -> Vec<SummaryRow> {
     use Reduction::*;
@@ -879,9 +797,6 @@ pub fn solve_case(case: &Case, observer: &dyn RunObserver) -> Result<CaseReport,
     }
     if case.methods.mobility {
         methods.push(run_mobility(case, observer)?);
-    }
-    if case.methods.closed_form {
-        parameters.extend(closed_form_equilibria(case)?);
     }
     let summary = summary_rows(&methods);
     let closed_form = crate::closed_form_report::report_table(case, &methods);

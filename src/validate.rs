@@ -107,12 +107,10 @@ fn jb1(report: &crate::output::CaseReport, rows: &mut Vec<Row>) {
     // The closed-form static equilibria (seed 004 models): reported, no bound — JB1 has
     // L/D = 0.6, neither short nor long.
     for model in ["short_gumbel", "long_gumbel", "pinkus_sternlicht"] {
-        let key = format!("closed_form_{model}_eccentricity_ratio");
-        if let Some(crate::output::ParameterValue::Number(e)) = report
-            .parameters
-            .iter()
-            .find(|p| p.key == key)
-            .map(|p| p.value.clone())
+        if let Some(e) = report
+            .closed_form_row(model)
+            .filter(|r| r.status == "ok")
+            .map(|r| r.eccentricity_ratio)
         {
             rows.push(Row {
                 case: "benasciutti_jb1_steady",

@@ -343,16 +343,14 @@ fn closed_form_table_agrees_with_the_mobility_equilibrium_of_a_steady_load() {
         .expect("JB1 case");
     assert!(case.methods.closed_form);
     let report = jbearing::run::solve_case(&case, &jbearing::run::Quiet).expect("JB1 solves");
-    let param = |k: &str| match report
-        .parameters
-        .iter()
-        .find(|p| p.key == k)
-        .map(|p| &p.value)
-    {
-        Some(jbearing::output::ParameterValue::Number(v)) => *v,
-        other => panic!("{k}: {other:?}"),
+    let eps = |model: &str| {
+        let row = report
+            .closed_form_row(model)
+            .unwrap_or_else(|| panic!("{model}: no row in {:?}", report.closed_form));
+        assert_eq!(row.status, "ok", "{model}");
+        row.eccentricity_ratio
     };
-    let eps_closed = param("closed_form_short_gumbel_eccentricity_ratio");
+    let eps_closed = eps("short_gumbel");
     let m = report.method(jbearing::output::Method::Mobility).unwrap();
     let eps_mob = m
         .reduce(
@@ -373,7 +371,7 @@ fn closed_form_table_agrees_with_the_mobility_equilibrium_of_a_steady_load() {
         "short_gumbel_moving_film",
         "pinkus_sternlicht",
     ] {
-        let e = param(&format!("closed_form_{model}_eccentricity_ratio"));
+        let e = eps(model);
         assert!(e > 0.0 && e < 1.0, "{model}: ε = {e}");
     }
 }

@@ -614,6 +614,16 @@ where
 }
 
 impl CaseReport {
+    /// The closed-form table's row of `model` (a `ClosedFormModel::name()`, or "fd_reynolds"),
+    /// if the case asked for the table; its `status` says whether the equilibrium was found.
+    pub fn closed_form_row(&self, model: &str) -> Option<&ClosedFormRow> {
+        self.closed_form
+            .as_ref()?
+            .rows
+            .iter()
+            .find(|r| r.model == model)
+    }
+
     /// The result of `method`, if it was run.
     pub fn method(&self, method: Method) -> Option<&MethodResult> {
         self.methods.iter().find(|m| m.method == method)
