@@ -76,3 +76,42 @@ pub mod flores2006 {
         p
     }
 }
+
+/// The compressor main bearing of Yu & Sawicki (2002) Table II (design.md §7) as used by the
+/// inverse-solver tests and the inverse timing report: L = 18.288 mm, R = 27.43 mm,
+/// c = 48.9 µm, a partial groove 24.9 × 3.81 mm at θ = 90° (top, unloaded side) fed at
+/// 0.2068 MPa, 1800 rpm; μ = 0.02 Pa·s assumed. The synthetic compressor-like load: a 4 kN
+/// pulse once per turn on 0.8 kN, plus a 0.6 kN second-order side load.
+pub mod compressor_main {
+    use jbearing_solvers::reynolds::{GridParams, Groove, ReynoldsParams, TimeScheme};
+    use std::f64::consts::{PI, TAU};
+
+    /// Crank (= journal) speed, rad/s.
+    pub const OMEGA: f64 = 1800.0 * TAU / 60.0;
+    /// Groove feed pressure (gauge), Pa.
+    pub const FEED: f64 = 0.2068e6;
+
+    /// The Reynolds-solver parameters on an n_θ × n_z grid with the given time scheme.
+    pub fn reynolds_params(scheme: TimeScheme, n_theta: usize, n_z: usize) -> ReynoldsParams {
+        let mut p = ReynoldsParams::plain(27.43e-3, 18.288e-3, 48.9e-6, 0.02);
+        p.grid = GridParams { n_theta, n_z };
+        p.time_scheme = scheme;
+        p.grooves = vec![Groove {
+            center_angle: 0.5 * PI,
+            center_z: 0.0,
+            angular_width: 24.9e-3 / 27.43e-3,
+            axial_width: 3.81e-3,
+            cutoff_film_fraction: 0.01,
+        }];
+        p
+    }
+
+    /// The synthetic load (N, bearing frame) at time t.
+    pub fn pulse_load(t: f64) -> [f64; 2] {
+        let a = OMEGA * t;
+        [
+            600.0 * (2.0 * a).sin(),
+            -800.0 - 4000.0 * (0.5 * (1.0 - a.cos())).powi(4),
+        ]
+    }
+}

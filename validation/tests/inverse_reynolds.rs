@@ -7,39 +7,23 @@
 //! switches make some steps stall slightly above the Newton tolerance; they are accepted below
 //! `accept_tolerance` and counted (`InverseInfo::stalled_steps`).
 //!
-//! Bearing: the compressor main bearing (design.md §7): L = 18.288 mm, R = 27.43 mm,
-//! c = 48.9 µm, partial groove 24.9 × 3.81 mm at θ = 90° (top, unloaded side), feed
-//! 0.2068 MPa, 1800 rpm; μ = 0.02 Pa·s assumed. 4° steps keep the run short; every comparison is
-//! between two solutions on the same grid.
+//! Bearing and synthetic load: [`jbearing_validation::compressor_main`] (the compressor main
+//! bearing, design.md §7), shared with the inverse timing report. 4° steps keep most runs short.
 
 use jbearing_solvers::inverse::{
     InverseError, InverseParams, NoObserver, ReynoldsFilm, solve_inverse,
 };
 use jbearing_solvers::load::{ConstantLoad, FnLoad, OperatingHistory, RotatingLoad};
-use jbearing_solvers::reynolds::{
-    GridParams, Groove, OperatingConditions, ReynoldsParams, ReynoldsSolver, TimeScheme,
-};
+use jbearing_solvers::reynolds::{OperatingConditions, ReynoldsParams, ReynoldsSolver, TimeScheme};
+use jbearing_validation::compressor_main::{FEED, OMEGA, pulse_load, reynolds_params};
 use std::f64::consts::{PI, TAU};
-
-const OMEGA: f64 = 1800.0 * TAU / 60.0;
-const FEED: f64 = 0.2068e6;
 
 fn params(scheme: TimeScheme) -> ReynoldsParams {
     params_on(scheme, 48, 13)
 }
 
 fn params_on(scheme: TimeScheme, n_theta: usize, n_z: usize) -> ReynoldsParams {
-    let mut p = ReynoldsParams::plain(27.43e-3, 18.288e-3, 48.9e-6, 0.02);
-    p.grid = GridParams { n_theta, n_z };
-    p.time_scheme = scheme;
-    p.grooves = vec![Groove {
-        center_angle: 0.5 * PI,
-        center_z: 0.0,
-        angular_width: 24.9e-3 / 27.43e-3,
-        axial_width: 3.81e-3,
-        cutoff_film_fraction: 0.01,
-    }];
-    p
+    reynolds_params(scheme, n_theta, n_z)
 }
 
 fn history<L>(load: L) -> OperatingHistory<L> {
@@ -92,16 +76,6 @@ fn constant_load_gives_the_steady_load_solution() {
         e_ref
     );
     assert!((last.attitude_angle - sol.attitude_angle).abs() < 1e-3);
-}
-
-/// The synthetic compressor-like load (N): a 4 kN pulse once per turn on 0.8 kN, plus a 0.6 kN
-/// second-order side load.
-fn pulse_load(t: f64) -> [f64; 2] {
-    let a = OMEGA * t;
-    [
-        600.0 * (2.0 * a).sin(),
-        -800.0 - 4000.0 * (0.5 * (1.0 - a.cos())).powi(4),
-    ]
 }
 
 /// Over a periodic cycle the film content returns to its start: mean supply = mean leakage.

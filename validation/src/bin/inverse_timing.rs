@@ -27,18 +27,9 @@ use jbearing_solvers::inverse::{
     NoObserver, ReynoldsFilm, solve_inverse,
 };
 use jbearing_solvers::load::{FnLoad, OperatingHistory};
-use jbearing_solvers::reynolds::{FilmState, GridParams, Groove, ReynoldsParams};
-use std::f64::consts::{PI, TAU};
-
-const OMEGA: f64 = 1800.0 * TAU / 60.0;
-
-fn pulse_load(t: f64) -> [f64; 2] {
-    let a = OMEGA * t;
-    [
-        600.0 * (2.0 * a).sin(),
-        -800.0 - 4000.0 * (0.5 * (1.0 - a.cos())).powi(4),
-    ]
-}
+use jbearing_solvers::reynolds::{FilmState, TimeScheme};
+use jbearing_validation::compressor_main::{FEED, OMEGA, pulse_load, reynolds_params};
+use std::f64::consts::TAU;
 
 fn thread_cpu_seconds() -> f64 {
     let mut t = libc::timespec {
@@ -91,19 +82,6 @@ impl FilmModel for TimedFilm {
     }
 }
 
-fn reynolds_params(n_theta: usize, n_z: usize) -> ReynoldsParams {
-    let mut p = ReynoldsParams::plain(27.43e-3, 18.288e-3, 48.9e-6, 0.02);
-    p.grid = GridParams { n_theta, n_z };
-    p.grooves = vec![Groove {
-        center_angle: 0.5 * PI,
-        center_z: 0.0,
-        angular_width: 24.9e-3 / 27.43e-3,
-        axial_width: 3.81e-3,
-        cutoff_film_fraction: 0.01,
-    }];
-    p
-}
-
 struct Row {
     grid: (usize, usize),
     step_deg: f64,
@@ -121,10 +99,10 @@ fn run(n_theta: usize, n_z: usize, step_deg: f64) -> Result<Row> {
         },
         journal_speed: OMEGA,
         bearing_speed: 0.0,
-        feed_pressures: vec![0.2068e6],
+        feed_pressures: vec![FEED],
     };
     let mut film = TimedFilm {
-        inner: ReynoldsFilm::new(reynolds_params(n_theta, n_z))?,
+        inner: ReynoldsFilm::new(reynolds_params(TimeScheme::BackwardEuler, n_theta, n_z))?,
         film_seconds: 0.0,
         krylov_iterations: 0,
     };
