@@ -45,12 +45,6 @@
 //! consistent state (full → ψ < 0, cavitated → ψ > 0) and the loop would cycle. A node that
 //! has changed state `MAX_FLIPS` times is locked full the next time it is full; its pressure
 //! may then lie marginally below p_cav, while every mass balance still holds to `tolerance`.
-//! Which nodes end up locked depends on the path of the loop, so the lock is part of the
-//! answer: [`FilmState::locked`] records them, and a step started from a nearby answer
-//! ([`ReynoldsSolver::solve_step_from`]) locks the same nodes at once. The Newton iterates of
-//! one inverse time step then see one and the same regularised film, whose force varies
-//! smoothly between them (on the compressor-size benchmark this removed every stalled Newton
-//! step and halved the cost).
 //!
 //! # Supply models (design.md §8)
 //!
@@ -231,10 +225,6 @@ pub struct FilmState {
     /// Net outflow of each node at this level, m³/s (Crank–Nicolson needs it; None: the next
     /// step falls back to backward Euler once).
     pub net_outflow: Option<Array2<f64>>,
-    /// Nodes the switch loop's anti-cycling lock had reached (`MAX_FLIPS` state changes) in the
-    /// solve that produced this state. A step started from this state with
-    /// [`ReynoldsSolver::solve_step_from`] locks them at once instead of flipping them again.
-    pub locked: Array2<bool>,
 }
 
 /// Everything a solve returns (SI units; angles in rad; locations as (θ, z)).
@@ -367,8 +357,6 @@ pub enum ReynoldsError {
 /// The converged discrete film of one solve (crate internal).
 pub(crate) struct Core {
     grid: Grid,
-    /// State changes of each node in the switch loop (≥ `MAX_FLIPS`: locked).
-    flips: Vec<u8>,
     h: Vec<f64>,
     psi: Vec<f64>,
     g: Vec<f64>,
@@ -473,7 +461,6 @@ impl ReynoldsSolver {
             density_ratio: Array2::from_elem((n_theta, n_z), 1.0 + psi),
             full_film: Array2::from_elem((n_theta, n_z), true),
             net_outflow: None,
-            locked: Array2::from_elem((n_theta, n_z), false),
         }
     }
 
@@ -491,10 +478,7 @@ impl ReynoldsSolver {
     /// [`solve_step`](Self::solve_step) with the iterations started from `start`'s φ and g
     /// instead of `state`'s: the answer of a nearby step from the same `state` (a previous
     /// Newton iterate of the inverse solver) needs fewer switch and Krylov iterations. The
-    /// nodes `start` had locked (anti-cycling, module docs) are locked from the outset, so the
-    /// answer is the discrete solution with the same regularisation as `start`'s; where no
-    /// lock is involved it is the same solution as from `state`, to `tolerance`. `start` must
-    /// be of the same grid.
+    /// answer is the same discrete solution to `tolerance`; `start` must be of the same grid.
     pub fn solve_step_from(
         &mut self,
         state: &FilmState,
@@ -564,7 +548,7 @@ impl ReynoldsSolver {
             &input.conditions,
             time,
             Some((psi0, g0)),
-            start.map(|f| f.locked.iter().copied().collect()),
+            start.is_some(),
         )?;
         let sol = outputs::film_solution(
             &self.params,
@@ -586,11 +570,6 @@ impl ReynoldsSolver {
             full_film: Array2::from_shape_vec(shape, core.g.iter().map(|&g| g > 0.5).collect())
                 .expect("grid shape"),
             net_outflow: Some(Array2::from_shape_vec(shape, out).expect("grid shape")),
-            locked: Array2::from_shape_vec(
-                shape,
-                core.flips.iter().map(|&f| f >= MAX_FLIPS).collect(),
-            )
-            .expect("grid shape"),
         };
         Ok((sol, new_state))
     }
@@ -634,7 +613,13 @@ impl ReynoldsSolver {
                 reason: "a steady film needs a surface speed (a pure squeeze has no steady state)",
             });
         }
-        self.solve_core(eccentricity_ratio, conditions, TimeTerm::Steady, None, None)
+        self.solve_core(
+            eccentricity_ratio,
+            conditions,
+            TimeTerm::Steady,
+            None,
+            false,
+        )
     }
 
     fn set_grid(&mut self, theta0: f64) -> Result<(), ReynoldsError> {
@@ -653,9 +638,8 @@ impl ReynoldsSolver {
         conditions: &OperatingConditions,
         time: TimeTerm,
         warm: Option<(Vec<f64>, Vec<f64>)>,
-        start_locks: Option<Vec<bool>>,
+        start_tight: bool,
     ) -> Result<Core, ReynoldsError> {
-        let start_tight = start_locks.is_some();
         check_eps(eps)?;
         let p = &self.params;
         if conditions.feed_pressures.len() != p.grooves.len() {
@@ -739,11 +723,7 @@ impl ReynoldsSolver {
         };
         let mut linear_iterations = 0;
         let mut residual;
-        // A start from a nearby answer brings that answer's locked nodes with it.
-        let mut flips: Vec<u8> = match &start_locks {
-            Some(l) if l.len() == n => l.iter().map(|&b| if b { MAX_FLIPS } else { 0 }).collect(),
-            _ => vec![0u8; n],
-        };
+        let mut flips = vec![0u8; n];
         let mut iteration = 0;
         // Inexact switch loop: while g still changes, the frozen systems are solved to a loose
         // tolerance; once g stops changing, a tight solve confirms it (and the loop goes on if
@@ -839,7 +819,6 @@ impl ReynoldsSolver {
         discretization::face_fluxes(&level, &g, &psi, &mut flux_theta, &mut flux_z);
         Ok(Core {
             grid: grid.clone(),
-            flips,
             h: h.node,
             psi,
             g,
