@@ -433,6 +433,29 @@ pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> Me
                 ParameterValue::Integer(info.film_evaluations as i64),
             ),
             (
+                "jacobian_evaluations".into(),
+                ParameterValue::Integer(info.jacobian_evaluations as i64),
+            ),
+            (
+                "sweep_iterations".into(),
+                ParameterValue::Integer(info.sweep_iterations as i64),
+            ),
+            // Steps accepted above the Newton tolerance (film-force jumps) and steps that
+            // needed halving: how much to trust the orbit between the tolerance and
+            // accept_tolerance.
+            (
+                "stalled_steps".into(),
+                ParameterValue::Integer(info.stalled_steps as i64),
+            ),
+            (
+                "max_stalled_residual".into(),
+                ParameterValue::Number(info.max_stalled_residual),
+            ),
+            (
+                "split_steps".into(),
+                ParameterValue::Integer(info.split_steps as i64),
+            ),
+            (
                 "warning".into(),
                 ParameterValue::Text(
                     info.warning

@@ -281,6 +281,21 @@ fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
         out_dir.to_str().unwrap(),
     ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
+    // The run statistics that say how far to trust the orbit are in the file: stalled steps
+    // are accepted only up to the default accept_tolerance (1e-2).
+    {
+        let f = hdf5_metno::File::open(out_dir.join("flores2006_mobility.h5")).unwrap();
+        let g = f.group("rigorous").unwrap();
+        let int = |k: &str| -> i64 { g.attr(k).unwrap().read_scalar().unwrap() };
+        let num = |k: &str| -> f64 { g.attr(k).unwrap().read_scalar().unwrap() };
+        assert!(int("stalled_steps") >= 0 && int("split_steps") >= 0);
+        assert!(int("film_evaluations") >= int("newton_iterations"));
+        let worst = num("max_stalled_residual");
+        assert!(
+            worst.is_finite() && (0.0..=1e-2).contains(&worst),
+            "max_stalled_residual {worst}"
+        );
+    }
     let mut rdr = csv::Reader::from_path(out_dir.join("flores2006_mobility_summary.csv")).unwrap();
     let headers = rdr.headers().unwrap().clone();
     let rig = headers
