@@ -29,6 +29,13 @@ pub struct BatchEntry {
     pub result: Result<CaseOutcome, RunError>,
 }
 
+/// The name a case goes by before its file is read (progress bars, failed rows): the file stem.
+fn case_stem(path: &std::path::Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
 /// Expand directories into their `*.toml` files (sorted), keep files as given.
 pub fn collect_cases(inputs: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
     let mut out = Vec::new();
@@ -119,10 +126,7 @@ pub fn run_batch(
     };
     let mut bars = Vec::new();
     for p in paths {
-        let name = p
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
+        let name = case_stem(p);
         let bar = multi.add(ProgressBar::new_spinner());
         bar.set_style(style.clone());
         bar.set_prefix(name.clone());
@@ -184,11 +188,7 @@ pub fn summary_csv(entries: &[BatchEntry]) -> String {
          eccentricity_ratio_max,message\n",
     );
     for e in entries {
-        let name = e
-            .path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
+        let name = case_stem(&e.path);
         match &e.result {
             Err(err) => {
                 let msg = err.to_string().replace('"', "'");
@@ -225,11 +225,7 @@ pub fn summary_table(entries: &[BatchEntry]) -> String {
     }
     s.push('\n');
     for e in entries {
-        let name = e
-            .path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
+        let name = case_stem(&e.path);
         match &e.result {
             Err(err) => {
                 let _ = writeln!(s, "{name:<26} {:<10} FAILED   {err}", "-");

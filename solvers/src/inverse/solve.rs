@@ -1147,6 +1147,17 @@ mod tests {
     use crate::load::{ConstantLoad, FnLoad, OperatingHistory};
     use std::f64::consts::TAU;
 
+    /// What the toy films below return: the force, h_min = 1 − |ε| (clearance units), unit
+    /// power loss.
+    fn toy_response(film_force: [f64; 2], e: [f64; 2]) -> FilmResponse {
+        FilmResponse {
+            film_force,
+            min_film_thickness: 1.0 - norm(e),
+            power_loss: 1.0,
+            ..Default::default()
+        }
+    }
+
     /// A linear spring–damper film: F = −k ε − d ε̇ (backward Euler velocity), optionally
     /// saturating or poisoned with NaN.
     #[derive(Clone)]
@@ -1175,15 +1186,7 @@ mod tests {
             if norm(e) > self.nan_beyond {
                 f[0] = f64::NAN;
             }
-            Ok((
-                FilmResponse {
-                    film_force: f,
-                    min_film_thickness: 1.0 - norm(e),
-                    power_loss: 1.0,
-                    ..Default::default()
-                },
-                e,
-            ))
+            Ok((toy_response(f, e), e))
         }
     }
 
@@ -1355,15 +1358,7 @@ mod tests {
                 let g = 10.0 * self.k / norm(d);
                 f = [f[0] - g * d[0], f[1] - g * d[1]];
             }
-            Ok((
-                FilmResponse {
-                    film_force: f,
-                    min_film_thickness: 1.0 - norm(e),
-                    power_loss: 1.0,
-                    ..Default::default()
-                },
-                e,
-            ))
+            Ok((toy_response(f, e), e))
         }
     }
 
