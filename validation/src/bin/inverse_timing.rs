@@ -19,7 +19,8 @@
 //! - step scaling at 120 × 31: 2°, 1°, 0.5°.
 //!
 //! Usage: `cargo run --release -p jbearing-validation --bin inverse_timing [-- --quick]`
-//! (`--quick`: the 60 × 15 rows only, to check that it runs).
+//! (`--quick`: the 60 × 15 rows only, to check that it runs; `--default`: the 120 × 31, 1° row
+//! only, for before/after comparisons of a change).
 
 use anyhow::{Context, Result};
 use jbearing_solvers::inverse::{
@@ -138,8 +139,11 @@ fn machine() -> String {
 
 fn main() -> Result<()> {
     let quick = std::env::args().any(|a| a == "--quick");
+    let default_only = std::env::args().any(|a| a == "--default");
     let plan: Vec<(usize, usize, f64)> = if quick {
         vec![(60, 15, 2.0), (60, 15, 1.0)]
+    } else if default_only {
+        vec![(120, 31, 1.0)]
     } else {
         vec![
             (120, 31, 1.0),
