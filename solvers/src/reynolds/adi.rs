@@ -32,7 +32,11 @@
 //!                                             −30 % Krylov iterations for +25 % work)
 //!    ```
 //!
-//!    and restarted flexible GMRES (Saad 1993) iterates on A M⁻¹ until the discrete mass
+//!    The line matrices do not change during a solve: they are factored once
+//!    ([`InterleavedFactors`]), and each sweep is a forward and a back substitution, vectorized
+//!    across lines (bit for bit the one-shot line solvers' result).
+//!
+//!    Restarted flexible GMRES (Saad 1993) iterates on A M⁻¹ until the discrete mass
 //!    residual max_k |r_k| is below `tolerance ×` the flux scale (max over rows of Σ|A_kl ψ_l|).
 //!
 //! The switch g is frozen during this solve and updated in the outer loop (`mod.rs`), which
@@ -42,10 +46,7 @@
 use super::ReynoldsError;
 use super::discretization::Stencil;
 use super::grid::{Grid, NodeKind};
-use crate::tridiagonal::{
-    BatchWorkspace, LineWorkspace, cyclic_thomas_solve, cyclic_thomas_solve_interleaved,
-    thomas_solve_interleaved,
-};
+use crate::tridiagonal::{InterleavedFactors, LineWorkspace, cyclic_thomas_solve};
 
 /// Krylov subspace size before a restart.
 const RESTART: usize = 48;
@@ -65,9 +66,11 @@ pub(crate) struct AdiWorkspace {
     mask: Vec<f64>,
     coarse: [Vec<f64>; 5],
     /// The axial lines interleaved for the batched Thomas kernel (unknown j of line i at
-    /// `j · n_θ + i`): sub, diag, sup (set once per frozen system), rhs, solution.
+    /// `j · n_θ + i`): sub, diag, sup (to factor), rhs, solution.
     axial: [Vec<f64>; 5],
-    batch: BatchWorkspace,
+    /// Factors of the circumferential and of the axial lines of the frozen system.
+    circumferential_factors: InterleavedFactors,
+    axial_factors: InterleavedFactors,
     line: LineWorkspace,
 }
 
@@ -145,9 +148,14 @@ fn build_coarse(grid: &Grid, st: &Stencil, ws: &mut AdiWorkspace) {
     }
 }
 
-/// Copies the axial-line coefficients (s, p, n) into the interleaved layout of `ws.axial`.
-fn build_axial(grid: &Grid, st: &Stencil, ws: &mut AdiWorkspace) {
+/// Factors the line matrices of the frozen system once for all sweeps of the solve: the
+/// circumferential lines as stored (line j, unknown i at i·n_z + j), the axial lines from an
+/// interleaved copy of s, p, n (line i, unknown j at j·n_θ + i).
+fn factor_lines(grid: &Grid, st: &Stencil, ws: &mut AdiWorkspace) -> Result<(), ReynoldsError> {
     let (nt, nz) = (grid.n_theta, grid.n_z);
+    ws.circumferential_factors
+        .factor_periodic(nt, nz, &st.w, &st.p, &st.e)
+        .map_err(|e| line_error("circumferential (line = z index)", e))?;
     let [sub, diag, sup, _, _] = &mut ws.axial;
     for i in 0..nt {
         for j in 0..nz {
@@ -157,6 +165,9 @@ fn build_axial(grid: &Grid, st: &Stencil, ws: &mut AdiWorkspace) {
             sup[t] = st.n[k];
         }
     }
+    ws.axial_factors
+        .factor_dirichlet(nz, nt, sub, diag, sup)
+        .map_err(|e| line_error("axial (line = θ index)", e))
 }
 
 /// x = M⁻¹ r (see the module docs). Uses `ws.t`, `ws.y`, `ws.coarse[3..5]`.
@@ -194,8 +205,9 @@ fn precondition(
     for k in 0..n {
         ws.t[k] = r[k] - ws.t[k];
     }
-    cyclic_thomas_solve_interleaved(nt, nz, &st.w, &st.p, &st.e, &ws.t, &mut ws.y, &mut ws.batch)
-        .map_err(|e| line_error("circumferential", e))?;
+    ws.circumferential_factors
+        .solve(&ws.t, &mut ws.y)
+        .map_err(|e| line_error("circumferential (line = z index)", e))?;
     for k in 0..n {
         x[k] += ws.y[k];
     }
@@ -204,13 +216,14 @@ fn precondition(
     // single-line Thomas solve, bit for bit; the batch vectorizes across lines).
     st.apply(grid, x, &mut ws.t);
     {
-        let [sub, diag, sup, rhs, y] = &mut ws.axial;
+        let [_, _, _, rhs, y] = &mut ws.axial;
         for i in 0..nt {
             for j in 0..nz {
                 rhs[j * nt + i] = r[i * nz + j] - ws.t[i * nz + j];
             }
         }
-        thomas_solve_interleaved(nz, nt, sub, diag, sup, rhs, y, &mut ws.batch)
+        ws.axial_factors
+            .solve(rhs, y)
             .map_err(|e| line_error("axial (line = θ index)", e))?;
         for i in 0..nt {
             for j in 0..nz {
@@ -223,8 +236,9 @@ fn precondition(
     for k in 0..n {
         ws.t[k] = r[k] - ws.t[k];
     }
-    cyclic_thomas_solve_interleaved(nt, nz, &st.w, &st.p, &st.e, &ws.t, &mut ws.y, &mut ws.batch)
-        .map_err(|e| line_error("circumferential", e))?;
+    ws.circumferential_factors
+        .solve(&ws.t, &mut ws.y)
+        .map_err(|e| line_error("circumferential (line = z index)", e))?;
     for k in 0..n {
         x[k] += ws.y[k];
     }
@@ -248,7 +262,7 @@ pub(crate) fn solve_krylov(
     let n = grid.len();
     ws.ensure(n, grid.n_theta);
     build_coarse(grid, st, ws);
-    build_axial(grid, st, ws);
+    factor_lines(grid, st, ws)?;
     let mut iterations = 0;
     loop {
         let mut r = std::mem::take(&mut ws.r);

@@ -143,12 +143,17 @@
 //! [`thomas_solve_interleaved`] and [`cyclic_thomas_solve_interleaved`] (module `batch`) solve
 //! many independent lines stored interleaved, vectorized across lines, with the same
 //! arithmetic as the single-line functions here (results agree bit for bit).
+//! [`InterleavedFactors`] (module `factored`) splits the same elimination into a factor phase
+//! (pivots, checks, reciprocals: once per matrix) and a solve phase (per right-hand side), for
+//! the ADI sweeps, whose line matrices stay fixed during a Krylov solve; again bit for bit.
 
 use thiserror::Error;
 
 mod batch;
+mod factored;
 
 pub use batch::{BatchWorkspace, LANES, cyclic_thomas_solve_interleaved, thomas_solve_interleaved};
+pub use factored::InterleavedFactors;
 
 /// Why a line solve failed.
 #[derive(Debug, Clone, PartialEq, Error)]

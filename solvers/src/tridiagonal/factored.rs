@@ -1,0 +1,569 @@
+//! Factor once, solve many: batches of lines whose matrix stays fixed while the right-hand side
+//! changes.
+//!
+//! In the ADI preconditioner of a frozen-switch Reynolds solve (`reynolds::adi`) the line
+//! matrices are fixed for the whole Krylov solve, while every preconditioner application solves
+//! them with a new right-hand side (the circumferential lines twice per application). The plain
+//! batched kernels ([`super::batch`]) recompute each pivot, its check and its reciprocal every
+//! time. Here the elimination is split into its two halves:
+//!
+//! ```text
+//!   factor (once per matrix)            solve (per right-hand side, vectorized across lines)
+//!   ─────────────────────────           ───────────────────────────────────────────────────
+//!   r_i = 1 / d'_i   (pivot checked)    y_0 = c_0 r_0,  y_i = (c_i − b_i y_{i−1}) r_i
+//!   u_i = a_i r_i                       x_i = y_i − u_i x_{i+1}                 (Dirichlet)
+//!   f_i, carried A_i, d*  (periodic)    c* = c_{m−1} − Σ A_i y_i,  x_{m−1} = c* / d*,
+//!                                       x_i = (y_i − u_i x_{i+1}) − f_i x_{m−1}  (periodic)
+//! ```
+//!
+//! (notation and derivation of the periodic recurrences: the module docs of `tridiagonal`).
+//!
+//! ## Bit for bit
+//!
+//! Every quantity is computed by the same IEEE operations in the same order as in
+//! [`thomas_solve`](super::thomas_solve) and [`cyclic_thomas_solve`](super::cyclic_thomas_solve)
+//! (and their batched twins): the factor phase runs the coefficient-only part of those
+//! recurrences, the solve phase the right-hand-side part, with the stored values in place of
+//! the recomputed ones. So a factored solve returns, bit for bit, what the one-shot solvers
+//! return (tested with `==` on the bits). The solve phase uses the chunk-of-lanes scheme and
+//! the run-time AVX2 choice of [`super::batch`]; neither changes a bit.
+//!
+//! ## Errors
+//!
+//! A vanishing pivot is found by the factor phase and named by line and row
+//! ([`TridiagonalError::ZeroPivotInLine`], the first failing line, as the batch kernels report
+//! it). The solve phase reports the first non-finite unknown
+//! ([`TridiagonalError::NonFiniteSolutionInLine`]). Periodic lines need m ≥ 3 (the ADI lines
+//! have at least 8 nodes); shorter ones are rejected ([`TridiagonalError::BatchSizeMismatch`]).
+
+use super::{FLUSH_RTOL, TridiagonalError, flush, pivot_ok};
+
+/// Which line kind a factorization holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+enum Kind {
+    #[default]
+    Dirichlet,
+    Periodic,
+}
+
+/// The factors of a batch of `lines` lines of `m` unknowns, stored interleaved like the batch
+/// kernels' inputs (row i of line l at `i · lines + l`). Reusable: a new factorization
+/// overwrites the old one without allocating when the size is unchanged.
+#[derive(Debug, Clone, Default)]
+pub struct InterleavedFactors {
+    kind: Kind,
+    m: usize,
+    lines: usize,
+    /// b_i (row i ≥ 1; row 0 unused).
+    sub: Vec<f64>,
+    /// r_i = 1 / d'_i (periodic: rows 0 … m−2).
+    recip: Vec<f64>,
+    /// u_i = a_i r_i (periodic: rows 0 … m−3).
+    upper: Vec<f64>,
+    /// Periodic: fill-in f_i (rows 0 … m−2).
+    fill: Vec<f64>,
+    /// Periodic: the entry A_i of the last row that row i removes (rows 0 … m−2).
+    carried: Vec<f64>,
+    /// Periodic: the last row's final diagonal d*, per line.
+    d_star: Vec<f64>,
+}
+
+fn sizes_ok(
+    m: usize,
+    lines: usize,
+    sub: &[f64],
+    diag: &[f64],
+    sup: &[f64],
+) -> Result<usize, TridiagonalError> {
+    let n = m.checked_mul(lines);
+    let fits = |s: &[f64]| Some(s.len()) == n;
+    if !(fits(sub) && fits(diag) && fits(sup)) {
+        return Err(TridiagonalError::BatchSizeMismatch {
+            m,
+            lines,
+            sub: sub.len(),
+            diag: diag.len(),
+            sup: sup.len(),
+            rhs: n.unwrap_or(0),
+            x: n.unwrap_or(0),
+        });
+    }
+    if m == 0 {
+        return Err(TridiagonalError::Empty);
+    }
+    Ok(m * lines)
+}
+
+fn zero_pivot(line: usize, row: usize, pivot: f64, scale: f64) -> TridiagonalError {
+    TridiagonalError::ZeroPivotInLine {
+        line,
+        row,
+        pivot,
+        scale,
+    }
+}
+
+impl InterleavedFactors {
+    fn resize(&mut self, kind: Kind, m: usize, lines: usize, n: usize) {
+        self.kind = kind;
+        self.m = m;
+        self.lines = lines;
+        for v in [
+            &mut self.sub,
+            &mut self.recip,
+            &mut self.upper,
+            &mut self.fill,
+            &mut self.carried,
+        ] {
+            v.resize(n, 0.0);
+        }
+        self.d_star.resize(lines, 0.0);
+    }
+
+    /// Number of unknowns per line and number of lines of the current factorization.
+    pub fn shape(&self) -> (usize, usize) {
+        (self.m, self.lines)
+    }
+
+    /// Factors `lines` Dirichlet lines (Thomas; `sub` of row 0 and `sup` of row m−1 ignored).
+    pub fn factor_dirichlet(
+        &mut self,
+        m: usize,
+        lines: usize,
+        sub: &[f64],
+        diag: &[f64],
+        sup: &[f64],
+    ) -> Result<(), TridiagonalError> {
+        let n = sizes_ok(m, lines, sub, diag, sup)?;
+        self.resize(Kind::Dirichlet, m, lines, n);
+        self.sub.copy_from_slice(sub);
+        for l in 0..lines {
+            // As `thomas_solve`, coefficient part only.
+            let a0 = if m > 1 { sup[l] } else { 0.0 };
+            let d0 = diag[l];
+            let scale = d0.abs() + a0.abs();
+            if !pivot_ok(d0, scale) {
+                return Err(zero_pivot(l, 0, d0, scale));
+            }
+            let r = 1.0 / d0;
+            self.recip[l] = r;
+            let mut u_prev = a0 * r;
+            self.upper[l] = u_prev;
+            for i in 1..m {
+                let k = i * lines + l;
+                let a = if i + 1 < m { sup[k] } else { 0.0 };
+                let b = sub[k];
+                let pivot = diag[k] - b * u_prev;
+                let scale = b.abs() + diag[k].abs() + a.abs();
+                if !pivot_ok(pivot, scale) {
+                    return Err(zero_pivot(l, i, pivot, scale));
+                }
+                let r = 1.0 / pivot;
+                self.recip[k] = r;
+                u_prev = a * r;
+                self.upper[k] = u_prev;
+            }
+        }
+        Ok(())
+    }
+
+    /// Factors `lines` periodic lines (modified Thomas; `sub` of row 0 and `sup` of row m−1
+    /// are the corner entries), m ≥ 3.
+    pub fn factor_periodic(
+        &mut self,
+        m: usize,
+        lines: usize,
+        sub: &[f64],
+        diag: &[f64],
+        sup: &[f64],
+    ) -> Result<(), TridiagonalError> {
+        let n = sizes_ok(m, lines, sub, diag, sup)?;
+        if m < 3 {
+            return Err(TridiagonalError::BatchSizeMismatch {
+                m,
+                lines,
+                sub: sub.len(),
+                diag: diag.len(),
+                sup: sup.len(),
+                rhs: n,
+                x: n,
+            });
+        }
+        self.resize(Kind::Periodic, m, lines, n);
+        self.sub.copy_from_slice(sub);
+        let last = m - 1;
+        for l in 0..lines {
+            // As `cyclic_thomas_solve` (m ≥ 3), coefficient part only.
+            let at = |i: usize| i * lines + l;
+            let (b, d, a) = (sub[l], diag[l], sup[l]);
+            let scale = b.abs() + d.abs() + a.abs();
+            if !pivot_ok(d, scale) {
+                return Err(zero_pivot(l, 0, d, scale));
+            }
+            let r = 1.0 / d;
+            let mut u_prev = a * r;
+            let mut f_prev = b * r;
+            self.recip[l] = r;
+            self.upper[l] = u_prev;
+            self.fill[l] = f_prev;
+            let (b_last, d_last, a_last) = (sub[at(last)], diag[at(last)], sup[at(last)]);
+            let scale_last = b_last.abs() + d_last.abs() + a_last.abs();
+            let carried_tol = FLUSH_RTOL * scale_last;
+            let mut carried = a_last;
+            self.carried[l] = carried;
+            let mut d_star = d_last - carried * f_prev;
+            carried = flush(-carried * u_prev, carried_tol);
+            for i in 1..last - 1 {
+                let k = at(i);
+                let (b, d, a) = (sub[k], diag[k], sup[k]);
+                let pivot = d - b * u_prev;
+                let scale = b.abs() + d.abs() + a.abs();
+                if !pivot_ok(pivot, scale) {
+                    return Err(zero_pivot(l, i, pivot, scale));
+                }
+                let r = 1.0 / pivot;
+                u_prev = a * r;
+                f_prev = flush(-(b * f_prev) * r, FLUSH_RTOL);
+                self.recip[k] = r;
+                self.upper[k] = u_prev;
+                self.fill[k] = f_prev;
+                self.carried[k] = carried;
+                d_star -= carried * f_prev;
+                carried = flush(-carried * u_prev, carried_tol);
+            }
+            let i = last - 1;
+            let k = at(i);
+            let (b, d, a) = (sub[k], diag[k], sup[k]);
+            let pivot = d - b * u_prev;
+            let scale = b.abs() + d.abs() + a.abs();
+            if !pivot_ok(pivot, scale) {
+                return Err(zero_pivot(l, i, pivot, scale));
+            }
+            let r = 1.0 / pivot;
+            let f_m2 = (a - b * f_prev) * r;
+            self.recip[k] = r;
+            self.upper[k] = 0.0;
+            self.fill[k] = f_m2;
+            carried += b_last;
+            self.carried[k] = carried;
+            d_star -= carried * f_m2;
+            if !pivot_ok(d_star, scale_last) {
+                return Err(zero_pivot(l, last, d_star, scale_last));
+            }
+            self.d_star[l] = d_star;
+        }
+        Ok(())
+    }
+
+    /// Solves every line of the factorization for `rhs` (interleaved, `m · lines` values) into
+    /// `x`. The result is bit for bit that of the one-shot solver of the same lines.
+    pub fn solve(&self, rhs: &[f64], x: &mut [f64]) -> Result<(), TridiagonalError> {
+        let n = self.m * self.lines;
+        if rhs.len() != n || x.len() != n {
+            return Err(TridiagonalError::BatchSizeMismatch {
+                m: self.m,
+                lines: self.lines,
+                sub: n,
+                diag: n,
+                sup: n,
+                rhs: rhs.len(),
+                x: x.len(),
+            });
+        }
+        if n == 0 {
+            return if self.m == 0 {
+                Err(TridiagonalError::Empty)
+            } else {
+                Ok(())
+            };
+        }
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 (checked just above), the only requirement of
+            // calling a function compiled with `target_feature(enable = "avx2")`.
+            return unsafe { self.solve_all_avx2(rhs, x) };
+        }
+        self.solve_all(rhs, x)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn solve_all_avx2(&self, rhs: &[f64], x: &mut [f64]) -> Result<(), TridiagonalError> {
+        self.solve_all(rhs, x)
+    }
+
+    #[inline(always)]
+    fn solve_all(&self, rhs: &[f64], x: &mut [f64]) -> Result<(), TridiagonalError> {
+        const LANES: usize = super::LANES;
+        let lines = self.lines;
+        let mut l0 = 0;
+        let mut finite = true;
+        while l0 + LANES <= lines {
+            finite &= self.chunk::<LANES>(l0, rhs, x);
+            l0 += LANES;
+        }
+        if lines - l0 >= 4 {
+            finite &= self.chunk::<4>(l0, rhs, x);
+            l0 += 4;
+        }
+        if lines - l0 >= 2 {
+            finite &= self.chunk::<2>(l0, rhs, x);
+            l0 += 2;
+        }
+        if lines - l0 >= 1 {
+            finite &= self.chunk::<1>(l0, rhs, x);
+        }
+        if finite {
+            return Ok(());
+        }
+        // The first line (then row) with a non-finite unknown.
+        let (line, row) = (0..lines)
+            .find_map(|l| {
+                (0..self.m)
+                    .find(|&i| !x[i * lines + l].is_finite())
+                    .map(|i| (l, i))
+            })
+            .unwrap_or((0, 0));
+        Err(TridiagonalError::NonFiniteSolutionInLine {
+            line,
+            row,
+            value: x[row * lines + line],
+        })
+    }
+
+    /// Lanes l0 … l0+L−1; returns whether every unknown is finite.
+    #[inline(always)]
+    fn chunk<const L: usize>(&self, l0: usize, rhs: &[f64], x: &mut [f64]) -> bool {
+        match self.kind {
+            Kind::Dirichlet => self.chunk_dirichlet::<L>(l0, rhs, x),
+            Kind::Periodic => self.chunk_periodic::<L>(l0, rhs, x),
+        }
+    }
+
+    #[inline(always)]
+    fn chunk_dirichlet<const L: usize>(&self, l0: usize, rhs: &[f64], x: &mut [f64]) -> bool {
+        let (m, lines) = (self.m, self.lines);
+        let c: [f64; L] = load(rhs, l0);
+        let r: [f64; L] = load(&self.recip, l0);
+        let mut y_prev = lanes::<L>(|k| c[k] * r[k]);
+        store(x, l0, &y_prev);
+        for i in 1..m {
+            let at = i * lines + l0;
+            let (b, c, r): ([f64; L], [f64; L], [f64; L]) =
+                (load(&self.sub, at), load(rhs, at), load(&self.recip, at));
+            y_prev = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
+            store(x, at, &y_prev);
+        }
+        let mut x_next = y_prev;
+        let mut finite = x_next.map(f64::is_finite);
+        for i in (0..m - 1).rev() {
+            let at = i * lines + l0;
+            let (y, u): ([f64; L], [f64; L]) = (load(x, at), load(&self.upper, at));
+            x_next = lanes::<L>(|k| y[k] - u[k] * x_next[k]);
+            for k in 0..L {
+                finite[k] &= x_next[k].is_finite();
+            }
+            store(x, at, &x_next);
+        }
+        !finite.contains(&false)
+    }
+
+    #[inline(always)]
+    fn chunk_periodic<const L: usize>(&self, l0: usize, rhs: &[f64], x: &mut [f64]) -> bool {
+        let (m, lines) = (self.m, self.lines);
+        let last = m - 1;
+        // Row 0 and the fused last row.
+        let c: [f64; L] = load(rhs, l0);
+        let r: [f64; L] = load(&self.recip, l0);
+        let mut y_prev = lanes::<L>(|k| c[k] * r[k]);
+        store(x, l0, &y_prev);
+        let c_last: [f64; L] = load(rhs, last * lines + l0);
+        let carried: [f64; L] = load(&self.carried, l0);
+        let mut c_star = lanes::<L>(|k| c_last[k] - carried[k] * y_prev[k]);
+        // Rows 1 … m-2.
+        for i in 1..last {
+            let at = i * lines + l0;
+            let (b, c, r, carried): ([f64; L], [f64; L], [f64; L], [f64; L]) = (
+                load(&self.sub, at),
+                load(rhs, at),
+                load(&self.recip, at),
+                load(&self.carried, at),
+            );
+            y_prev = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
+            store(x, at, &y_prev);
+            c_star = lanes::<L>(|k| c_star[k] - carried[k] * y_prev[k]);
+        }
+        // Back substitution.
+        let d_star: [f64; L] = load(&self.d_star, l0);
+        let x_last = lanes::<L>(|k| c_star[k] / d_star[k]);
+        store(x, last * lines + l0, &x_last);
+        let i = last - 1;
+        let f_m2: [f64; L] = load(&self.fill, i * lines + l0);
+        let mut x_next = lanes::<L>(|k| y_prev[k] - f_m2[k] * x_last[k]);
+        store(x, i * lines + l0, &x_next);
+        let mut finite: [bool; L] =
+            std::array::from_fn(|k| x_last[k].is_finite() & x_next[k].is_finite());
+        for i in (0..last - 1).rev() {
+            let at = i * lines + l0;
+            let (y, u, f): ([f64; L], [f64; L], [f64; L]) =
+                (load(x, at), load(&self.upper, at), load(&self.fill, at));
+            x_next = lanes::<L>(|k| (y[k] - u[k] * x_next[k]) - f[k] * x_last[k]);
+            for k in 0..L {
+                finite[k] &= x_next[k].is_finite();
+            }
+            store(x, at, &x_next);
+        }
+        !finite.contains(&false)
+    }
+}
+
+#[inline(always)]
+fn load<const L: usize>(s: &[f64], at: usize) -> [f64; L] {
+    let c = &s[at..at + L];
+    std::array::from_fn(|k| c[k])
+}
+
+#[inline(always)]
+fn store<const L: usize>(s: &mut [f64], at: usize, v: &[f64; L]) {
+    s[at..at + L].copy_from_slice(v);
+}
+
+#[inline(always)]
+fn lanes<const L: usize>(f: impl FnMut(usize) -> f64) -> [f64; L] {
+    std::array::from_fn(f)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tridiagonal::{
+        BatchWorkspace, cyclic_thomas_solve_interleaved, thomas_solve_interleaved,
+    };
+
+    /// xorshift64*: deterministic values in [-1, 1).
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            let v = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d);
+            (v >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    /// Lines like the Reynolds rows: some diagonally dominant, some upwind (lower bidiagonal
+    /// plus diagonal, not dominant by rows), with a spread of magnitudes.
+    fn lines(m: usize, lines: usize, rng: &mut Rng) -> [Vec<f64>; 4] {
+        let n = m * lines;
+        let (mut b, mut d, mut a, mut c) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        for k in 0..n {
+            let mag = 10f64.powf(3.0 * rng.next());
+            b[k] = mag * rng.next();
+            a[k] = if k % 5 == 0 { 0.0 } else { mag * rng.next() };
+            d[k] = mag * (2.5 + rng.next()) * if k % 7 == 0 { -1.0 } else { 1.0 };
+            c[k] = rng.next() * 1e3;
+        }
+        [b, d, a, c]
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    #[test]
+    fn factored_solves_equal_the_one_shot_batch_solvers_bit_for_bit() {
+        // Every remainder of the 8-lane chunks (lines 1 … 19) and short and long lines; three
+        // right-hand sides per factorization (the factors must not change between solves).
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut fac = InterleavedFactors::default();
+        let mut work = BatchWorkspace::default();
+        for m in [3usize, 4, 5, 8, 31, 120] {
+            for nl in 1..=19 {
+                let [b, d, a, _] = lines(m, nl, &mut rng);
+                fac.factor_periodic(m, nl, &b, &d, &a).unwrap();
+                for _ in 0..3 {
+                    let c: Vec<f64> = (0..m * nl).map(|_| rng.next() * 1e3).collect();
+                    let (mut x1, mut x2) = (vec![0.0; m * nl], vec![0.0; m * nl]);
+                    cyclic_thomas_solve_interleaved(m, nl, &b, &d, &a, &c, &mut x1, &mut work)
+                        .unwrap();
+                    fac.solve(&c, &mut x2).unwrap();
+                    assert_eq!(bits(&x1), bits(&x2), "periodic m = {m}, lines = {nl}");
+                }
+                fac.factor_dirichlet(m, nl, &b, &d, &a).unwrap();
+                for _ in 0..3 {
+                    let c: Vec<f64> = (0..m * nl).map(|_| rng.next() * 1e3).collect();
+                    let (mut x1, mut x2) = (vec![0.0; m * nl], vec![0.0; m * nl]);
+                    thomas_solve_interleaved(m, nl, &b, &d, &a, &c, &mut x1, &mut work).unwrap();
+                    fac.solve(&c, &mut x2).unwrap();
+                    assert_eq!(bits(&x1), bits(&x2), "Dirichlet m = {m}, lines = {nl}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_vanishing_pivot_is_named_as_the_batch_solver_names_it() {
+        // Line 5 of 11 gets a zero pivot in row 3 (d_3 = b_3 u_2 exactly: u_2 = 0 because
+        // a_2 = 0, so d_3 = 0 makes the pivot 0).
+        let (m, nl) = (9, 11);
+        let mut rng = Rng(7);
+        let [mut b, mut d, mut a, c] = lines(m, nl, &mut rng);
+        a[2 * nl + 5] = 0.0;
+        d[3 * nl + 5] = 0.0;
+        let mut work = BatchWorkspace::default();
+        let mut x = vec![0.0; m * nl];
+        let mut fac = InterleavedFactors::default();
+        for periodic in [false, true] {
+            let (one_shot, factored) = if periodic {
+                (
+                    cyclic_thomas_solve_interleaved(m, nl, &b, &d, &a, &c, &mut x, &mut work),
+                    fac.factor_periodic(m, nl, &b, &d, &a),
+                )
+            } else {
+                (
+                    thomas_solve_interleaved(m, nl, &b, &d, &a, &c, &mut x, &mut work),
+                    fac.factor_dirichlet(m, nl, &b, &d, &a),
+                )
+            };
+            let e = factored.unwrap_err();
+            assert_eq!(one_shot.unwrap_err(), e);
+            assert!(
+                matches!(
+                    e,
+                    TridiagonalError::ZeroPivotInLine {
+                        line: 5,
+                        row: 3,
+                        ..
+                    }
+                ),
+                "{e}"
+            );
+        }
+        // Sizes: mismatched slices and too-short periodic lines are errors, not panics.
+        b.pop();
+        assert!(fac.factor_dirichlet(m, nl, &b, &d, &a).is_err());
+        d.truncate(2 * nl);
+        assert!(
+            fac.factor_periodic(2, nl, &d, &d, &d).is_err(),
+            "periodic lines need m ≥ 3"
+        );
+    }
+
+    #[test]
+    fn a_non_finite_right_hand_side_is_reported_with_its_line() {
+        let (m, nl) = (12, 10);
+        let mut rng = Rng(11);
+        let [b, d, a, mut c] = lines(m, nl, &mut rng);
+        c[4 * nl + 6] = f64::NAN;
+        let mut fac = InterleavedFactors::default();
+        let mut x = vec![0.0; m * nl];
+        fac.factor_periodic(m, nl, &b, &d, &a).unwrap();
+        let e = fac.solve(&c, &mut x).unwrap_err();
+        assert!(
+            matches!(e, TridiagonalError::NonFiniteSolutionInLine { line: 6, .. }),
+            "{e}"
+        );
+        assert!(fac.solve(&c[1..], &mut x).is_err(), "short right-hand side");
+    }
+}
