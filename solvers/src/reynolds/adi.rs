@@ -245,8 +245,25 @@ fn precondition(
     Ok(())
 }
 
+/// a · b with eight partial sums (k mod 8), added pairwise at the end. A single running sum is
+/// one serial chain of additions that cannot vectorize (Rust keeps the written order of
+/// floating-point operations); it was ~40 % of the Krylov solve's own time (perf, 120 × 31).
+/// The eight chains vectorize and are, if anything, more accurate (the error bound of
+/// blocked summation). The order is fixed, so the result does not depend on the machine.
 fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    debug_assert_eq!(a.len(), b.len());
+    let mut acc = [0.0f64; 8];
+    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for l in 0..8 {
+            acc[l] += x[l] * y[l];
+        }
+    }
+    for (l, (x, y)) in ra.iter().zip(rb).enumerate() {
+        acc[l] += x * y;
+    }
+    ((acc[0] + acc[4]) + (acc[2] + acc[6])) + ((acc[1] + acc[5]) + (acc[3] + acc[7]))
 }
 
 /// Solves A x = rhs for the frozen switch, starting from the `x` given (warm start), to
@@ -318,8 +335,9 @@ pub(crate) fn solve_krylov(
             let hnorm = dot(&w, &w).sqrt();
             ws.hess[(jj + 1) * RESTART + jj] = hnorm;
             if hnorm > 0.0 {
+                let inv = 1.0 / hnorm;
                 for wk in w.iter_mut() {
-                    *wk /= hnorm;
+                    *wk *= inv;
                 }
             }
             ws.v[jj + 1] = w;
