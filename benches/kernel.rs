@@ -42,8 +42,8 @@ use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Conj, Mat};
 use jbearing_solvers::tridiagonal::{
-    BatchWorkspace, LineWorkspace, cyclic_thomas_solve, cyclic_thomas_solve_interleaved,
-    thomas_solve,
+    BatchWorkspace, InterleavedFactors, LineWorkspace, cyclic_thomas_solve,
+    cyclic_thomas_solve_interleaved, thomas_solve,
 };
 use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
@@ -329,6 +329,17 @@ pub fn bench(c: &mut Criterion<ThreadCpuTime>) {
                     &mut batch_work,
                 )
                 .unwrap();
+                black_box(&xs);
+            })
+        });
+
+        // The same 32 lines factored once outside the timed loop (InterleavedFactors): the
+        // substitution phase alone, what each ADI sweep of a frozen system costs.
+        let mut factors = InterleavedFactors::default();
+        factors.factor_periodic(m, BATCH, &is, &id, &ia).unwrap();
+        group.bench_with_input(BenchmarkId::new("factored_32_lines", m), &m, |b, _| {
+            b.iter(|| {
+                factors.solve(black_box(&ic), &mut xs).unwrap();
                 black_box(&xs);
             })
         });

@@ -123,7 +123,7 @@ fn read_group(group_dir: &Path) -> Result<Results> {
 }
 
 /// Order of the kernel rows (others after, alphabetically).
-const KERNEL_ORDER: [&str; 8] = [
+const KERNEL_ORDER: [&str; 9] = [
     "modified_thomas",
     "plain_thomas",
     "sherman_morrison",
@@ -131,6 +131,7 @@ const KERNEL_ORDER: [&str; 8] = [
     "faer_sparse_lu_reused_symbolic",
     "nalgebra_dense_lu",
     "batched_32_lines",
+    "factored_32_lines",
     "loop_32_lines",
 ];
 
@@ -229,6 +230,12 @@ fn print_kernel_ratios(results: &Results) {
             num: "loop_32_lines",
             den: "batched_32_lines",
             target: Some(("≥ 2 (throughput)", |_| true, |r| r >= 2.0)),
+        },
+        Ratio {
+            what: "batched 32 lines (factor + solve) / factored once, solve only",
+            num: "batched_32_lines",
+            den: "factored_32_lines",
+            target: None,
         },
     ];
     let mut params: Vec<u64> = results.values().flat_map(|r| r.keys().copied()).collect();
