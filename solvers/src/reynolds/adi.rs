@@ -201,10 +201,7 @@ fn precondition(
         }
     }
     // Circumferential lines (interleaved: line j, unknown i at i·n_z + j).
-    st.apply(grid, x, &mut ws.t);
-    for k in 0..n {
-        ws.t[k] = r[k] - ws.t[k];
-    }
+    st.defect(grid, x, r, &mut ws.t);
     ws.circumferential_factors
         .solve(&ws.t, &mut ws.y)
         .map_err(|e| line_error("circumferential (line = z index)", e))?;
@@ -214,12 +211,12 @@ fn precondition(
     // Axial lines: stored contiguously (line i, unknown j at i·n_z + j), solved all at once by
     // the batched Thomas kernel on their interleaved copy (the same arithmetic per line as the
     // single-line Thomas solve, bit for bit; the batch vectorizes across lines).
-    st.apply(grid, x, &mut ws.t);
+    st.defect(grid, x, r, &mut ws.t);
     {
         let [_, _, _, rhs, y] = &mut ws.axial;
         for i in 0..nt {
             for j in 0..nz {
-                rhs[j * nt + i] = r[i * nz + j] - ws.t[i * nz + j];
+                rhs[j * nt + i] = ws.t[i * nz + j];
             }
         }
         ws.axial_factors
@@ -232,10 +229,7 @@ fn precondition(
         }
     }
     // Second circumferential pass (symmetric ADI ordering).
-    st.apply(grid, x, &mut ws.t);
-    for k in 0..n {
-        ws.t[k] = r[k] - ws.t[k];
-    }
+    st.defect(grid, x, r, &mut ws.t);
     ws.circumferential_factors
         .solve(&ws.t, &mut ws.y)
         .map_err(|e| line_error("circumferential (line = z index)", e))?;

@@ -93,6 +93,17 @@ impl Stencil {
     /// that the interior loop has no branch and vectorizes; the order of the operations, and so
     /// every bit of y, is that of the plain loop (Rust contracts nothing into fused multiply-adds).
     pub fn apply(&self, grid: &Grid, x: &[f64], y: &mut [f64]) {
+        self.product::<false>(grid, x, &[], y);
+    }
+
+    /// y = b − A x in one pass (the defect of a preconditioner sweep); per row exactly
+    /// `b_k − (A x)_k` with (A x)_k as in [`apply`](Self::apply).
+    pub fn defect(&self, grid: &Grid, x: &[f64], b: &[f64], y: &mut [f64]) {
+        self.product::<true>(grid, x, b, y);
+    }
+
+    #[inline(always)]
+    fn product<const DEFECT: bool>(&self, grid: &Grid, x: &[f64], b: &[f64], y: &mut [f64]) {
         let (nt, nz) = (grid.n_theta, grid.n_z);
         debug_assert!(nz >= 3, "the grid has at least 3 axial nodes");
         for i in 0..nt {
@@ -108,20 +119,28 @@ impl Stencil {
             let xp = &x[line.clone()];
             let xw = &x[iw * nz..(iw + 1) * nz];
             let xe = &x[ie * nz..(ie + 1) * nz];
+            let bl = if DEFECT { &b[line.clone()] } else { &[][..] };
             let yl = &mut y[line];
+            let out = |j: usize, v: f64| if DEFECT { bl[j] - v } else { v };
             let last = nz - 1;
-            yl[0] = p[0] * xp[0] + w[0] * xw[0] + e[0] * xe[0] + n[0] * xp[1];
+            yl[0] = out(0, p[0] * xp[0] + w[0] * xw[0] + e[0] * xe[0] + n[0] * xp[1]);
             for j in 1..last {
-                yl[j] = p[j] * xp[j]
-                    + w[j] * xw[j]
-                    + e[j] * xe[j]
-                    + s[j] * xp[j - 1]
-                    + n[j] * xp[j + 1];
+                yl[j] = out(
+                    j,
+                    p[j] * xp[j]
+                        + w[j] * xw[j]
+                        + e[j] * xe[j]
+                        + s[j] * xp[j - 1]
+                        + n[j] * xp[j + 1],
+                );
             }
-            yl[last] = p[last] * xp[last]
-                + w[last] * xw[last]
-                + e[last] * xe[last]
-                + s[last] * xp[last - 1];
+            yl[last] = out(
+                last,
+                p[last] * xp[last]
+                    + w[last] * xw[last]
+                    + e[last] * xe[last]
+                    + s[last] * xp[last - 1],
+            );
         }
     }
 
