@@ -260,6 +260,48 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     ((acc[0] + acc[4]) + (acc[2] + acc[6])) + ((acc[1] + acc[5]) + (acc[3] + acc[7]))
 }
 
+/// w ← w − h v, then returns w · u (or w · w when `u` is None) of the updated w: the same
+/// operations, partial sums and order as the update followed by [`dot`], in one pass.
+fn subtract_and_dot(w: &mut [f64], h: f64, v: &[f64], u: Option<&Vec<f64>>) -> f64 {
+    debug_assert_eq!(w.len(), v.len());
+    let mut acc = [0.0f64; 8];
+    let n8 = w.len() / 8 * 8;
+    let (wc, wr) = w.split_at_mut(n8);
+    let (vc, vr) = v.split_at(n8);
+    match u {
+        Some(u) => {
+            let (uc, ur) = u.split_at(n8);
+            for ((w, v), u) in wc
+                .chunks_exact_mut(8)
+                .zip(vc.chunks_exact(8))
+                .zip(uc.chunks_exact(8))
+            {
+                for l in 0..8 {
+                    w[l] -= h * v[l];
+                    acc[l] += w[l] * u[l];
+                }
+            }
+            for (l, ((w, v), u)) in wr.iter_mut().zip(vr).zip(ur).enumerate() {
+                *w -= h * v;
+                acc[l] += *w * u;
+            }
+        }
+        None => {
+            for (w, v) in wc.chunks_exact_mut(8).zip(vc.chunks_exact(8)) {
+                for l in 0..8 {
+                    w[l] -= h * v[l];
+                    acc[l] += w[l] * w[l];
+                }
+            }
+            for (l, (w, v)) in wr.iter_mut().zip(vr).enumerate() {
+                *w -= h * v;
+                acc[l] += *w * *w;
+            }
+        }
+    }
+    ((acc[0] + acc[4]) + (acc[2] + acc[6])) + ((acc[1] + acc[5]) + (acc[3] + acc[7]))
+}
+
 /// Solves A x = rhs for the frozen switch, starting from the `x` given (warm start), to
 /// max |r| ≤ `tolerance` × flux scale.
 pub(crate) fn solve_krylov(
@@ -318,15 +360,15 @@ pub(crate) fn solve_krylov(
             let mut w = std::mem::take(&mut ws.v[jj + 1]);
             st.apply(grid, &zj, &mut w);
             ws.z[jj] = zj;
-            // Modified Gram–Schmidt.
+            // Modified Gram–Schmidt, one pass over w per basis vector: the update by v_ii and
+            // the dot product with the next vector (or w · w after the last) share the pass.
+            let mut hij = dot(&w, &ws.v[0]);
             for ii in 0..=jj {
-                let hij = dot(&w, &ws.v[ii]);
                 ws.hess[ii * RESTART + jj] = hij;
-                for (wk, vk) in w.iter_mut().zip(&ws.v[ii]) {
-                    *wk -= hij * vk;
-                }
+                hij =
+                    subtract_and_dot(&mut w, hij, &ws.v[ii], ws.v.get(ii + 1).filter(|_| ii < jj));
             }
-            let hnorm = dot(&w, &w).sqrt();
+            let hnorm = hij.sqrt();
             ws.hess[(jj + 1) * RESTART + jj] = hnorm;
             if hnorm > 0.0 {
                 let inv = 1.0 / hnorm;
