@@ -20,7 +20,8 @@
 //!
 //! Usage: `cargo run --release -p jbearing-validation --bin inverse_timing [-- --quick]`
 //! (`--quick`: the 60 × 15 rows only, to check that it runs; `--default`: the 120 × 31, 1° row
-//! only, for before/after comparisons of a change).
+//! only, for before/after comparisons of a change; `--repeat N`: run every row N times and
+//! report the run with the median time, for a machine shared with other jobs).
 
 use anyhow::{Context, Result};
 use jbearing_solvers::inverse::{
@@ -140,6 +141,15 @@ fn machine() -> String {
 fn main() -> Result<()> {
     let quick = std::env::args().any(|a| a == "--quick");
     let default_only = std::env::args().any(|a| a == "--default");
+    let args: Vec<String> = std::env::args().collect();
+    let repeat: usize = match args.iter().position(|a| a == "--repeat") {
+        Some(i) => args
+            .get(i + 1)
+            .and_then(|v| v.parse().ok())
+            .filter(|&n: &usize| n >= 1)
+            .context("--repeat needs a positive count")?,
+        None => 1,
+    };
     let plan: Vec<(usize, usize, f64)> = if quick {
         vec![(60, 15, 2.0), (60, 15, 1.0)]
     } else if default_only {
@@ -154,16 +164,25 @@ fn main() -> Result<()> {
         ]
     };
     println!(
-        "Machine: {}. Measured: {}. Thread CPU time, one core, release build.\n",
+        "Machine: {}. Measured: {}. Thread CPU time, one core, release build{}.\n",
         machine(),
-        jiff::Timestamp::now().strftime("%Y-%m-%d %H:%M UTC")
+        jiff::Timestamp::now().strftime("%Y-%m-%d %H:%M UTC"),
+        if repeat > 1 {
+            format!("; each row the median of {repeat} runs")
+        } else {
+            String::new()
+        }
     );
     println!(
         "| grid | step | run-in + cycle (s) | per cycle (s) | film / Newton share | film steps per time step | ms per film step | Krylov iterations per film step | stalled / split steps | cycle min h_min (µm) | mean power (W) |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (nt, nz, step) in plan {
-        let r = run(nt, nz, step)?;
+        let mut runs = (0..repeat)
+            .map(|_| run(nt, nz, step))
+            .collect::<Result<Vec<_>>>()?;
+        runs.sort_by(|a, b| a.total.total_cmp(&b.total));
+        let r = runs.swap_remove(repeat / 2);
         let info = &r.solution.info;
         let steps = info.run_in_steps + info.steps_per_cycle;
         let per_cycle = r.total * info.steps_per_cycle as f64 / steps as f64;
