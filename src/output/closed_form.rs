@@ -5,7 +5,7 @@
 //!
 //! ```text
 //! ClosedFormTable
-//! ├── load [N], relative_speed [rad/s], load_basis   what every row balances
+//! ├── load \[N\], relative_speed \[rad/s\], load_basis   what every row balances
 //! └── rows: [ClosedFormRow]                          one per model
 //!       model, status ("ok" or the solver's error), ε, φ, γ, h_min, F, |F + W|, S
 //! ```
@@ -20,29 +20,29 @@ pub struct ClosedFormRow {
     pub model: String,
     /// `"ok"`, or why the model has no equilibrium (e.g. film collapse).
     pub status: String,
-    /// ε [1].
+    /// ε \[1\].
     pub eccentricity_ratio: f64,
     /// Attitude angle φ: from the load line to the line of centres, positive in the direction of
-    /// rotation [rad].
+    /// rotation \[rad\].
     pub attitude_angle: f64,
-    /// γ: angle of the line of centres from +x (bearing frame) [rad].
+    /// γ: angle of the line of centres from +x (bearing frame) \[rad\].
     pub line_of_centres_angle: f64,
-    /// h_min = c (1 − ε) [m].
+    /// h_min = c (1 − ε) \[m\].
     pub min_film_thickness: f64,
-    /// Film force on the journal at the equilibrium, bearing frame [N].
+    /// Film force on the journal at the equilibrium, bearing frame \[N\].
     pub film_force: [f64; 2],
-    /// Force balance |F + W| [N].
+    /// Force balance |F + W| \[N\].
     pub force_residual: f64,
-    /// Sommerfeld number S = μ N L D / |W| (R/c)² [1].
+    /// Sommerfeld number S = μ N L D / |W| (R/c)² \[1\].
     pub sommerfeld_number: f64,
 }
 
 /// The table of a case.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClosedFormTable {
-    /// The load W every row balances (force on the journal, bearing frame) [N].
+    /// The load W every row balances (force on the journal, bearing frame) \[N\].
     pub load: [f64; 2],
-    /// Relative speed ω = ω_j − ω_b [rad/s].
+    /// Relative speed ω = ω_j − ω_b \[rad/s\].
     pub relative_speed: f64,
     /// Where the load comes from ("constant load of a steady case", "cycle-mean load").
     pub load_basis: String,

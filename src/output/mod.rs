@@ -15,15 +15,15 @@
 //! ```text
 //! CaseReport
 //! ├── case_name, case_text            the case file exactly as given (TOML text)
-//! ├── input_files: [InputFile]        load / feed tables it refers to, verbatim
+//! ├── input_files: \[InputFile\]        load / feed tables it refers to, verbatim
 //! ├── geometry                        R, L, c of the bearing (m): the surface and the clearance circle
-//! ├── parameters: [Parameter]         resolved parameters, key = value [units]
+//! ├── parameters: \[Parameter\]         resolved parameters, key = value \[units\]
 //! ├── run: RunInfo                    jbearing version, git commit, wall time, start time
-//! ├── methods: [MethodResult]         one per method (Rigorous, Mobility)
-//! │   ├── time [s], crank_angle [deg] the sampling of the stored cycle
-//! │   ├── series: [Series]            named time series, e.g. names::MIN_FILM_THICKNESS
+//! ├── methods: \[MethodResult\]         one per method (Rigorous, Mobility)
+//! │   ├── time \[s\], crank_angle \[deg\] the sampling of the stored cycle
+//! │   ├── series: \[Series\]            named time series, e.g. names::MIN_FILM_THICKNESS
 //! │   └── fields: Option<FieldSnapshots>  2-D fields on (θ, z) at a set of instants
-//! ├── summary: [SummaryRow]           cycle figures per method (min h_min, mean flow, …)
+//! ├── summary: \[SummaryRow\]           cycle figures per method (min h_min, mean flow, …)
 //! └── closed_form: Option<ClosedFormTable>  static equilibrium per closed-form model
 //! ```
 //!
@@ -58,38 +58,38 @@ use ndarray::Array3;
 /// Standard series, field and summary names. The plots look series up by these names, and the
 /// Python example reads them; a solver result that has the quantity should use the name here.
 pub mod names {
-    /// Load on the journal (force the machine applies to it), bearing-frame x component [N].
+    /// Load on the journal (force the machine applies to it), bearing-frame x component \[N\].
     pub const LOAD_X: &str = "load_x";
-    /// Load on the journal, bearing-frame y component [N].
+    /// Load on the journal, bearing-frame y component \[N\].
     pub const LOAD_Y: &str = "load_y";
-    /// Oil feed (supply) pressure, gauge [Pa].
+    /// Oil feed (supply) pressure, gauge \[Pa\].
     pub const FEED_PRESSURE: &str = "feed_pressure";
-    /// Journal centre relative to the bearing centre, x component [m].
+    /// Journal centre relative to the bearing centre, x component \[m\].
     pub const ECCENTRICITY_X: &str = "eccentricity_x";
-    /// Journal centre relative to the bearing centre, y component [m].
+    /// Journal centre relative to the bearing centre, y component \[m\].
     pub const ECCENTRICITY_Y: &str = "eccentricity_y";
-    /// Eccentricity ratio ε = |e| / c [1].
+    /// Eccentricity ratio ε = |e| / c \[1\].
     pub const ECCENTRICITY_RATIO: &str = "eccentricity_ratio";
-    /// Attitude angle of the journal centre, from +x towards +y [rad].
+    /// Attitude angle of the journal centre, from +x towards +y \[rad\].
     pub const ATTITUDE_ANGLE: &str = "attitude_angle";
-    /// Minimum film thickness h_min [m].
+    /// Minimum film thickness h_min \[m\].
     pub const MIN_FILM_THICKNESS: &str = "min_film_thickness";
-    /// Peak film pressure, gauge [Pa].
+    /// Peak film pressure, gauge \[Pa\].
     pub const MAX_PRESSURE: &str = "max_pressure";
-    /// Supply flow: net oil volume flux out of the feed region into the film [m³/s].
+    /// Supply flow: net oil volume flux out of the feed region into the film \[m³/s\].
     pub const SUPPLY_FLOW: &str = "supply_flow";
-    /// Side leakage: oil volume flux out of both bearing ends [m³/s].
+    /// Side leakage: oil volume flux out of both bearing ends \[m³/s\].
     pub const SIDE_LEAKAGE: &str = "side_leakage";
-    /// Viscous power loss in the film [W].
+    /// Viscous power loss in the film \[W\].
     pub const POWER_LOSS: &str = "power_loss";
-    /// Cavitated fraction of the film area [1].
+    /// Cavitated fraction of the film area \[1\].
     pub const CAVITATED_FRACTION: &str = "cavitated_fraction";
 
-    /// Field: film pressure, gauge [Pa].
+    /// Field: film pressure, gauge \[Pa\].
     pub const PRESSURE: &str = "pressure";
-    /// Field: film thickness [m].
+    /// Field: film thickness \[m\].
     pub const FILM_THICKNESS: &str = "film_thickness";
-    /// Field: film content φ (density ratio where full, film fraction where cavitated) [1].
+    /// Field: film content φ (density ratio where full, film fraction where cavitated) \[1\].
     pub const FILM_CONTENT: &str = "film_content";
 }
 
@@ -136,11 +136,11 @@ impl fmt::Display for Method {
 /// circle of the orbit plot (c).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Geometry {
-    /// Bearing (journal) radius R [m].
+    /// Bearing (journal) radius R \[m\].
     pub radius: f64,
-    /// Bearing length L [m]; z runs from −L/2 to L/2.
+    /// Bearing length L \[m\]; z runs from −L/2 to L/2.
     pub length: f64,
-    /// Radial clearance c [m].
+    /// Radial clearance c \[m\].
     pub radial_clearance: f64,
 }
 
@@ -219,7 +219,7 @@ pub struct RunInfo {
     pub jbearing_version: String,
     /// `git describe --always --dirty` of the source tree, or `"unknown"`.
     pub git_commit: String,
-    /// Wall-clock time of the whole case (both methods) [s].
+    /// Wall-clock time of the whole case (both methods) \[s\].
     pub wall_time: f64,
     /// Start of the run, ISO 8601 UTC (e.g. `2026-11-22T05:00:00Z`), or empty if unknown.
     pub started_utc: String,
@@ -312,13 +312,13 @@ pub struct Field {
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct FieldSnapshots {
-    /// Times of the instants [s].
+    /// Times of the instants \[s\].
     pub time: Vec<f64>,
-    /// Crank angles of the instants [deg].
+    /// Crank angles of the instants \[deg\].
     pub crank_angle: Vec<f64>,
-    /// Circumferential node angles [rad].
+    /// Circumferential node angles \[rad\].
     pub theta: Vec<f64>,
-    /// Axial node positions [m].
+    /// Axial node positions \[m\].
     pub z: Vec<f64>,
     /// The fields; [`names::PRESSURE`] is the one shown on the VTK surface first.
     pub fields: Vec<Field>,
@@ -329,9 +329,9 @@ pub struct FieldSnapshots {
 pub struct MethodResult {
     /// Which method.
     pub method: Method,
-    /// Sample times of the stored cycle [s].
+    /// Sample times of the stored cycle \[s\].
     pub time: Vec<f64>,
-    /// Crank angle at each sample [deg] (may run past 360 if the cycle does not start at 0).
+    /// Crank angle at each sample \[deg\] (may run past 360 if the cycle does not start at 0).
     pub crank_angle: Vec<f64>,
     /// Named series, each with one value per sample.
     pub series: Vec<Series>,

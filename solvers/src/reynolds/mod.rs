@@ -16,17 +16,17 @@
 //! (supply cut-off, Yu & Sawicki Fig. 4 use φ = 0.01).
 //!
 //! # Modules
-//! - [`grid`](self::grid): θ × z nodes, storage `k = i·n_z + j`, node classes (diagram there).
-//! - [`film`](self::film): h at nodes and faces.
-//! - [`discretization`](self::discretization): the conservative five-point scheme, its face
+//! - `grid`: θ × z nodes, storage `k = i·n_z + j`, node classes (diagram there).
+//! - `film`: h at nodes and faces.
+//! - `discretization`: the conservative five-point scheme, its face
 //!   fluxes (Couette type differencing, pressure flux through gψ) and the frozen-switch
 //!   linear system.
-//! - [`adi`](self::adi): ADI line sweeps (cyclic kernel on circumferential lines, Thomas on
+//! - `adi`: ADI line sweeps (cyclic kernel on circumferential lines, Thomas on
 //!   axial lines) + line-aggregate coarse correction, as the preconditioner of FGMRES.
-//! - [`oracle`](self::oracle): the sparse-LU (faer) solve of the same system, g frozen.
-//! - [`outputs`](self::outputs): force, attitude, h_min, p_max, cavitated fraction, side
+//! - `oracle`: the sparse-LU (faer) solve of the same system, g frozen.
+//! - `outputs`: force, attitude, h_min, p_max, cavitated fraction, side
 //!   leakage, supply flow, friction torques, power loss.
-//! - [`steady_load`](self::steady_load): Newton on the two eccentricity components for a
+//! - `steady_load`: Newton on the two eccentricity components for a
 //!   constant load.
 //!
 //! # The switch loop
