@@ -5,7 +5,7 @@
 //!
 //! ```text
 //! ClosedFormTable
-//! ├── load \[N\], relative_speed \[rad/s\], load_basis   what every row balances
+//! ├── load [N], relative_speed [rad/s], load_basis   what every row balances
 //! └── rows: [ClosedFormRow]                          one per model
 //!       model, status ("ok" or the solver's error), ε, φ, γ, h_min, F, |F + W|, S
 //! ```

@@ -15,15 +15,15 @@
 //! ```text
 //! CaseReport
 //! ├── case_name, case_text            the case file exactly as given (TOML text)
-//! ├── input_files: \[InputFile\]        load / feed tables it refers to, verbatim
+//! ├── input_files: [InputFile]        load / feed tables it refers to, verbatim
 //! ├── geometry                        R, L, c of the bearing (m): the surface and the clearance circle
-//! ├── parameters: \[Parameter\]         resolved parameters, key = value \[units\]
+//! ├── parameters: [Parameter]         resolved parameters, key = value [units]
 //! ├── run: RunInfo                    jbearing version, git commit, wall time, start time
-//! ├── methods: \[MethodResult\]         one per method (Rigorous, Mobility)
-//! │   ├── time \[s\], crank_angle \[deg\] the sampling of the stored cycle
-//! │   ├── series: \[Series\]            named time series, e.g. names::MIN_FILM_THICKNESS
+//! ├── methods: [MethodResult]         one per method (Rigorous, Mobility)
+//! │   ├── time [s], crank_angle [deg] the sampling of the stored cycle
+//! │   ├── series: [Series]            named time series, e.g. names::MIN_FILM_THICKNESS
 //! │   └── fields: Option<FieldSnapshots>  2-D fields on (θ, z) at a set of instants
-//! ├── summary: \[SummaryRow\]           cycle figures per method (min h_min, mean flow, …)
+//! ├── summary: [SummaryRow]           cycle figures per method (min h_min, mean flow, …)
 //! └── closed_form: Option<ClosedFormTable>  static equilibrium per closed-form model
 //! ```
 //!
