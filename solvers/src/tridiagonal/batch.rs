@@ -210,19 +210,19 @@ impl<'a> Batch<'a> {
 }
 
 #[inline(always)]
-fn load<const L: usize>(s: &[f64], at: usize) -> [f64; L] {
+pub(super) fn load<const L: usize>(s: &[f64], at: usize) -> [f64; L] {
     let c = &s[at..at + L];
     std::array::from_fn(|k| c[k])
 }
 
 #[inline(always)]
-fn store<const L: usize>(s: &mut [f64], at: usize, v: &[f64; L]) {
+pub(super) fn store<const L: usize>(s: &mut [f64], at: usize, v: &[f64; L]) {
     s[at..at + L].copy_from_slice(v);
 }
 
 /// Elementwise map of lane arrays (a fixed-trip-count loop that LLVM vectorizes).
 #[inline(always)]
-fn lanes<const L: usize>(f: impl FnMut(usize) -> f64) -> [f64; L] {
+pub(super) fn lanes<const L: usize>(f: impl FnMut(usize) -> f64) -> [f64; L] {
     std::array::from_fn(f)
 }
 

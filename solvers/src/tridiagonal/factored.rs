@@ -36,6 +36,7 @@
 //! ([`TridiagonalError::NonFiniteSolutionInLine`]). Periodic lines need m ≥ 3 (the ADI lines
 //! have at least 8 nodes); shorter ones are rejected ([`TridiagonalError::BatchSizeMismatch`]).
 
+use super::batch::{lanes, load, store};
 use super::{FLUSH_RTOL, TridiagonalError, flush, pivot_ok};
 
 /// Which line kind a factorization holds.
@@ -68,16 +69,21 @@ pub struct InterleavedFactors {
     d_star: Vec<f64>,
 }
 
+/// Checks the slice lengths (m · lines each) and m ≥ `min_m` (m = 0 is [`TridiagonalError::Empty`]).
 fn sizes_ok(
     m: usize,
     lines: usize,
     sub: &[f64],
     diag: &[f64],
     sup: &[f64],
+    min_m: usize,
 ) -> Result<usize, TridiagonalError> {
     let n = m.checked_mul(lines);
     let fits = |s: &[f64]| Some(s.len()) == n;
-    if !(fits(sub) && fits(diag) && fits(sup)) {
+    if m == 0 && fits(sub) && fits(diag) && fits(sup) {
+        return Err(TridiagonalError::Empty);
+    }
+    if !(fits(sub) && fits(diag) && fits(sup)) || m < min_m {
         return Err(TridiagonalError::BatchSizeMismatch {
             m,
             lines,
@@ -87,9 +93,6 @@ fn sizes_ok(
             rhs: n.unwrap_or(0),
             x: n.unwrap_or(0),
         });
-    }
-    if m == 0 {
-        return Err(TridiagonalError::Empty);
     }
     Ok(m * lines)
 }
@@ -134,7 +137,7 @@ impl InterleavedFactors {
         diag: &[f64],
         sup: &[f64],
     ) -> Result<(), TridiagonalError> {
-        let n = sizes_ok(m, lines, sub, diag, sup)?;
+        let n = sizes_ok(m, lines, sub, diag, sup, 1)?;
         self.resize(Kind::Dirichlet, m, lines, n);
         self.sub.copy_from_slice(sub);
         for l in 0..lines {
@@ -177,18 +180,7 @@ impl InterleavedFactors {
         diag: &[f64],
         sup: &[f64],
     ) -> Result<(), TridiagonalError> {
-        let n = sizes_ok(m, lines, sub, diag, sup)?;
-        if m < 3 {
-            return Err(TridiagonalError::BatchSizeMismatch {
-                m,
-                lines,
-                sub: sub.len(),
-                diag: diag.len(),
-                sup: sup.len(),
-                rhs: n,
-                x: n,
-            });
-        }
+        let n = sizes_ok(m, lines, sub, diag, sup, 3)?;
         self.resize(Kind::Periodic, m, lines, n);
         self.sub.copy_from_slice(sub);
         let last = m - 1;
@@ -415,22 +407,6 @@ impl InterleavedFactors {
         }
         !finite.contains(&false)
     }
-}
-
-#[inline(always)]
-fn load<const L: usize>(s: &[f64], at: usize) -> [f64; L] {
-    let c = &s[at..at + L];
-    std::array::from_fn(|k| c[k])
-}
-
-#[inline(always)]
-fn store<const L: usize>(s: &mut [f64], at: usize, v: &[f64; L]) {
-    s[at..at + L].copy_from_slice(v);
-}
-
-#[inline(always)]
-fn lanes<const L: usize>(f: impl FnMut(usize) -> f64) -> [f64; L] {
-    std::array::from_fn(f)
 }
 
 #[cfg(test)]
