@@ -170,7 +170,8 @@ fn factor_lines(grid: &Grid, st: &Stencil, ws: &mut AdiWorkspace) -> Result<(), 
         .map_err(|e| line_error("axial (line = θ index)", e))
 }
 
-/// x = M⁻¹ r (see the module docs). Uses `ws.t`, `ws.y`, `ws.coarse[3..5]`.
+/// x = M⁻¹ r (see the module docs). Uses `ws.t`, `ws.y`, `ws.coarse[3..5]`, `ws.axial[3..5]`
+/// and the line factors set by [`factor_lines`].
 fn precondition(
     grid: &Grid,
     st: &Stencil,
@@ -257,12 +258,18 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     for (l, (x, y)) in ra.iter().zip(rb).enumerate() {
         acc[l] += x * y;
     }
+    sum_of_partials(&acc)
+}
+
+/// The eight partial sums of [`dot`] added in their fixed pairwise order.
+#[inline(always)]
+fn sum_of_partials(acc: &[f64; 8]) -> f64 {
     ((acc[0] + acc[4]) + (acc[2] + acc[6])) + ((acc[1] + acc[5]) + (acc[3] + acc[7]))
 }
 
 /// w ← w − h v, then returns w · u (or w · w when `u` is None) of the updated w: the same
 /// operations, partial sums and order as the update followed by [`dot`], in one pass.
-fn subtract_and_dot(w: &mut [f64], h: f64, v: &[f64], u: Option<&Vec<f64>>) -> f64 {
+fn subtract_and_dot(w: &mut [f64], h: f64, v: &[f64], u: Option<&[f64]>) -> f64 {
     debug_assert_eq!(w.len(), v.len());
     let mut acc = [0.0f64; 8];
     let n8 = w.len() / 8 * 8;
@@ -299,7 +306,7 @@ fn subtract_and_dot(w: &mut [f64], h: f64, v: &[f64], u: Option<&Vec<f64>>) -> f
             }
         }
     }
-    ((acc[0] + acc[4]) + (acc[2] + acc[6])) + ((acc[1] + acc[5]) + (acc[3] + acc[7]))
+    sum_of_partials(&acc)
 }
 
 /// Solves A x = rhs for the frozen switch, starting from the `x` given (warm start), to
@@ -365,8 +372,12 @@ pub(crate) fn solve_krylov(
             let mut hij = dot(&w, &ws.v[0]);
             for ii in 0..=jj {
                 ws.hess[ii * RESTART + jj] = hij;
-                hij =
-                    subtract_and_dot(&mut w, hij, &ws.v[ii], ws.v.get(ii + 1).filter(|_| ii < jj));
+                let next = if ii < jj {
+                    Some(ws.v[ii + 1].as_slice())
+                } else {
+                    None
+                };
+                hij = subtract_and_dot(&mut w, hij, &ws.v[ii], next);
             }
             let hnorm = hij.sqrt();
             ws.hess[(jj + 1) * RESTART + jj] = hnorm;

@@ -123,13 +123,36 @@ impl InterleavedFactors {
         self.d_star.resize(lines, 0.0);
     }
 
+    /// Forgets the factorization (shape 0 × 0).
+    fn invalidate(&mut self) {
+        self.m = 0;
+        self.lines = 0;
+    }
+
     /// Number of unknowns per line and number of lines of the current factorization.
     pub fn shape(&self) -> (usize, usize) {
         (self.m, self.lines)
     }
 
     /// Factors `lines` Dirichlet lines (Thomas; `sub` of row 0 and `sup` of row m−1 ignored).
+    /// On an error the factorization is empty: a later [`solve`](Self::solve) is an error, not
+    /// a solve with half-overwritten factors.
     pub fn factor_dirichlet(
+        &mut self,
+        m: usize,
+        lines: usize,
+        sub: &[f64],
+        diag: &[f64],
+        sup: &[f64],
+    ) -> Result<(), TridiagonalError> {
+        let out = self.factor_dirichlet_lines(m, lines, sub, diag, sup);
+        if out.is_err() {
+            self.invalidate();
+        }
+        out
+    }
+
+    fn factor_dirichlet_lines(
         &mut self,
         m: usize,
         lines: usize,
@@ -171,8 +194,24 @@ impl InterleavedFactors {
     }
 
     /// Factors `lines` periodic lines (modified Thomas; `sub` of row 0 and `sup` of row m−1
-    /// are the corner entries), m ≥ 3.
+    /// are the corner entries), m ≥ 3. On an error the factorization is empty, as for
+    /// [`factor_dirichlet`](Self::factor_dirichlet).
     pub fn factor_periodic(
+        &mut self,
+        m: usize,
+        lines: usize,
+        sub: &[f64],
+        diag: &[f64],
+        sup: &[f64],
+    ) -> Result<(), TridiagonalError> {
+        let out = self.factor_periodic_lines(m, lines, sub, diag, sup);
+        if out.is_err() {
+            self.invalidate();
+        }
+        out
+    }
+
+    fn factor_periodic_lines(
         &mut self,
         m: usize,
         lines: usize,
@@ -516,6 +555,12 @@ mod tests {
                 "{e}"
             );
         }
+        // A failed factorization leaves nothing to solve with.
+        assert_eq!(fac.shape(), (0, 0));
+        assert!(
+            fac.solve(&c, &mut x).is_err(),
+            "solve after a failed factorization"
+        );
         // Sizes: mismatched slices and too-short periodic lines are errors, not panics.
         b.pop();
         assert!(fac.factor_dirichlet(m, nl, &b, &d, &a).is_err());

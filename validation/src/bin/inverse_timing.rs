@@ -18,7 +18,8 @@
 //! - grid scaling at 1°: 60 × 15, 120 × 31, 240 × 61;
 //! - step scaling at 120 × 31: 2°, 1°, 0.5°.
 //!
-//! Usage: `cargo run --release -p jbearing-validation --bin inverse_timing [-- --quick]`
+//! Usage: `cargo run --release -p jbearing-validation --bin inverse_timing [-- [--quick |
+//! --default] [--repeat N]]`
 //! (`--quick`: the 60 × 15 rows only, to check that it runs; `--default`: the 120 × 31, 1° row
 //! only, for before/after comparisons of a change; `--repeat N`: run every row N times and
 //! report the run with the median time, for a machine shared with other jobs).
@@ -139,9 +140,21 @@ fn machine() -> String {
 }
 
 fn main() -> Result<()> {
-    let quick = std::env::args().any(|a| a == "--quick");
-    let default_only = std::env::args().any(|a| a == "--default");
-    let args: Vec<String> = std::env::args().collect();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut rest = args.iter();
+    while let Some(a) = rest.next() {
+        match a.as_str() {
+            "--quick" | "--default" => {}
+            "--repeat" => {
+                rest.next();
+            }
+            other => anyhow::bail!(
+                "unknown argument {other:?} (expected --quick, --default, --repeat N)"
+            ),
+        }
+    }
+    let quick = args.iter().any(|a| a == "--quick");
+    let default_only = args.iter().any(|a| a == "--default");
     let repeat: usize = match args.iter().position(|a| a == "--repeat") {
         Some(i) => args
             .get(i + 1)
