@@ -78,7 +78,6 @@ pub(crate) struct AdiWorkspace {
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct KrylovInfo {
     pub iterations: usize,
-    pub residual: f64,
 }
 
 impl AdiWorkspace {
@@ -310,12 +309,15 @@ fn subtract_and_dot(w: &mut [f64], h: f64, v: &[f64], u: Option<&[f64]>) -> f64 
 }
 
 /// Solves A x = rhs for the frozen switch, starting from the `x` given (warm start), to
-/// max |r| ≤ `tolerance` × flux scale.
+/// max |r| ≤ `tolerance` × flux scale: `flux_scale` if given (the semismooth Newton passes the
+/// scale of its nonlinear residual, which a pseudo-time shift must not inflate), else the
+/// stencil's own ([`Stencil::residual`]).
 pub(crate) fn solve_krylov(
     grid: &Grid,
     st: &Stencil,
     x: &mut [f64],
     tolerance: f64,
+    flux_scale: Option<f64>,
     max_iterations: usize,
     ws: &mut AdiWorkspace,
 ) -> Result<KrylovInfo, ReynoldsError> {
@@ -326,7 +328,8 @@ pub(crate) fn solve_krylov(
     let mut iterations = 0;
     loop {
         let mut r = std::mem::take(&mut ws.r);
-        let (rmax, scale) = st.residual(grid, x, &mut r);
+        let (rmax, own_scale) = st.residual(grid, x, &mut r);
+        let scale = flux_scale.unwrap_or(own_scale);
         if !rmax.is_finite() {
             ws.r = r;
             return Err(ReynoldsError::LinearSolve {
@@ -337,10 +340,7 @@ pub(crate) fn solve_krylov(
         let target = tolerance * scale;
         if rmax <= target || scale == 0.0 {
             ws.r = r;
-            return Ok(KrylovInfo {
-                iterations,
-                residual: if scale > 0.0 { rmax / scale } else { 0.0 },
-            });
+            return Ok(KrylovInfo { iterations });
         }
         if iterations >= max_iterations {
             ws.r = r;

@@ -29,22 +29,66 @@
 //! - `steady_load`: Newton on the two eccentricity components for a
 //!   constant load.
 //!
-//! # The switch loop
+//! # The complementarity problem and its semismooth Newton solve
 //!
-//! For a frozen g the discrete equations are linear in ψ = φ − 1. A solve (time step or steady)
-//! starts from the previous state's g (warm) or from a full film at ambient (cold), solves the
-//! frozen system to `tolerance`, sets g = 1 where ψ ≥ 0 and g = 0 where ψ < 0, and repeats until
-//! no node changes state. The converged answer satisfies every discrete mass balance to
-//! `tolerance` × the flux scale and the complementarity of the switch. While g still changes
-//! the frozen systems are solved only to a loose tolerance (10⁴ × `tolerance`, at most 1e-6);
-//! the final, unchanged g is confirmed by a tight solve. (Yu & Sawicki update g
-//! after each half sweep; with the sweeps inside a Krylov method the update moves to the outer
-//! loop, where it cannot spoil the Krylov subspace.)
+//! The discrete equations of `discretization` are, per unknown node k (ψ = φ − 1),
 //!
-//! Anti-cycling: with the interface faces' differencing depending on g, a node can find no
-//! consistent state (full → ψ < 0, cavitated → ψ > 0) and the loop would cycle. A node that
-//! has changed state `MAX_FLIPS` times is locked full the next time it is full; its pressure
-//! may then lie marginally below p_cav, while every mass balance still holds to `tolerance`.
+//! ```text
+//!   R_k(ψ) = Σ_l C_kl ψ_l + Σ_l P_kl max(ψ_l, 0) − b_k = 0
+//! ```
+//!
+//! C: time and upwind Couette terms (linear in φ = 1 + ψ), P: the pressure flux (through
+//! g ψ = max(ψ, 0)). This *is* the JFO complementarity problem: with u = max(ψ, 0) (pressure
+//! p − p_cav = βu) and v = max(−ψ, 0) (void fraction v = 1 − φ), u ≥ 0, v ≥ 0, u·v = 0 on every
+//! node (full: ψ ≥ 0, g = 1, p ≥ p_cav; cavitated: ψ < 0, p = p_cav, 0 ≤ φ < 1; Giacopini et al.
+//! 2010 write the same as an LCP). R is continuous and piecewise linear, and for every switch
+//! pattern g its slope A(g) = C + P diag(g) is an M-matrix (`discretization`, module docs).
+//!
+//! Semismooth Newton (the primal–dual active-set method of Hintermüller, Ito & Kunisch 2003)
+//! on the complementarity system in (u, v):
+//!
+//! ```text
+//!   R_mass(u, v) = C (u − v) + P u − b = 0,      min(u_k, v_k) = 0  (every unknown k)
+//! ```
+//!
+//! The min-function's generalized derivative picks u_k = 0 (cavitated) where u_k < v_k and
+//! v_k = 0 (full) otherwise; with that switch g the linearized system is exactly the
+//! frozen-switch system A(g) y = b, A(g) = C + P diag(g) (the mass balance is linear), and the
+//! full step is (u⁺, v⁺) = (g y, −(1 − g) y): a full step leaves the mass balance solved and
+//! only the complementarity of the nodes whose sign of y disagrees with g violated. A
+//! piecewise-linear problem is solved exactly once the switch pattern is right (finite
+//! termination). Each iteration
+//!
+//! 1. solves A(g) y = b by the iterative solver of `adi`, started from the current ψ = u − v:
+//!    loosely (10⁴ × `tolerance`, at most 1e-6) while the switch still changes, to `tolerance`
+//!    once it does not (inexact Newton: an early step whose switch pattern is wrong needs no
+//!    accurate solve);
+//! 2. backtracks from the full step on the merit Θ(u, v) = ‖R_mass(u, v)‖₂² +
+//!    ‖w ∘ min(u, v)‖₂² (w_k: the cell's Couette outflow plus its time term, so that a unit
+//!    error in ψ_k weighs like the flux it carries): Armijo, Θ(λ) ≤ (1 − 2·10⁻⁴ λ) Θ(0),
+//!    λ = 1, ½, … ¹⁄₆₄; if no λ decreases Θ the full step is taken (the undamped active-set
+//!    iteration) and counted. The merit's mass residual is written out from the face fluxes
+//!    (`discretization::mass_residual`), independently of the assembled matrix. (Θ in the
+//!    single variable ψ would be useless: a cavitated node whose frozen solve gives ψ > 0 would
+//!    be read as a pressure β ψ of hundreds of MPa, while in (u, v) it is an O(1) violation of
+//!    complementarity that the next step removes.)
+//!
+//! The switch of the next step is g = [u ≥ v]. It stops when a tight solve leaves g unchanged:
+//! then max_k |R_k(ψ)| ≤ `tolerance` × the flux scale (the largest driving flux of a row,
+//! `Stencil::residual`) at a ψ with g = H(ψ), so every discrete mass balance holds to the
+//! tolerance and complementarity holds exactly on every node — p = p_cav + β max(ψ, 0) ≥ p_cav
+//! on full nodes and φ = 1 + ψ < 1 on cavitated ones (φ ≥ 0 checked). No node is ever locked,
+//! and the answer is the solution of R(ψ) = 0, not a product of the iteration path. Warm
+//! starts (the previous time step, or a nearby Newton iterate of the inverse solver) need one
+//! to three iterations.
+//!
+//! A steady film (no time term) has a singular A(g) for a switch pattern with a closed, fully
+//! cavitated circumferential ring (its content only circulates), which early iterates can
+//! have. Steady solves therefore add a pseudo-time term to the Newton matrix only —
+//! (A(g) + D) ψ⁺ = b + D ψ, D_k = σ (|U|/2) h_k Δz_k (σ times the cell's Couette outflow),
+//! σ = ‖R(ψ)‖/‖R(ψ⁰)‖ (switched evolution relaxation, Mulder & van Leer 1985; pseudo-transient
+//! continuation, Kelley & Keyes 1998) — which vanishes as the residual does: the residual
+//! itself, and so the answer, are untouched.
 //!
 //! # Supply models (design.md §8)
 //!
@@ -165,8 +209,8 @@ pub struct ReynoldsParams {
     pub linear_solver: LinearSolver,
     /// Relative tolerance of the discrete mass residual (max |r| / flux scale).
     pub tolerance: f64,
-    /// Maximum switch (outer) iterations per solve.
-    pub max_switch_iterations: usize,
+    /// Maximum semismooth Newton iterations per solve.
+    pub max_newton_iterations: usize,
     /// Maximum Krylov iterations per frozen-switch solve.
     pub max_linear_iterations: usize,
 }
@@ -189,7 +233,7 @@ impl ReynoldsParams {
             time_scheme: TimeScheme::BackwardEuler,
             linear_solver: LinearSolver::AdiKrylov,
             tolerance: 1e-10,
-            max_switch_iterations: 200,
+            max_newton_iterations: 100,
             max_linear_iterations: 400,
         }
     }
@@ -314,15 +358,16 @@ pub enum ReynoldsError {
         tolerance: f64,
     },
     #[error(
-        "switch loop not converged after {iterations} iterations: {changed_nodes} nodes still \
-         change state (first at θ index {theta_index}, z index {z_index}), residual {residual:e}"
+        "complementarity (JFO switch) not converged after {iterations} semismooth Newton \
+         iterations: relative mass residual {residual:e} > tolerance {tolerance:e}; \
+         {switched_last} of {n_unknown} nodes changed state in the last step"
     )]
-    SwitchNotConverged {
+    ComplementarityNotConverged {
         iterations: usize,
-        changed_nodes: usize,
-        theta_index: usize,
-        z_index: usize,
         residual: f64,
+        tolerance: f64,
+        switched_last: usize,
+        n_unknown: usize,
     },
     #[error(
         "{what} not finite at θ index {theta_index}, z index {z_index} (iteration {iteration})"
@@ -352,6 +397,14 @@ pub enum ReynoldsError {
         force_residual: f64,
         eccentricity_ratio: [f64; 2],
     },
+}
+
+/// The iteration-independent part of a solve ([`ReynoldsSolver::prepare`]).
+pub(crate) struct Prepared {
+    h: FilmThickness,
+    psi: Vec<f64>,
+    g: Vec<f64>,
+    speed: f64,
 }
 
 /// The converged discrete film of one solve (crate internal).
@@ -548,7 +601,6 @@ impl ReynoldsSolver {
             &input.conditions,
             time,
             Some((psi0, g0)),
-            start.is_some(),
         )?;
         let sol = outputs::film_solution(
             &self.params,
@@ -613,13 +665,7 @@ impl ReynoldsSolver {
                 reason: "a steady film needs a surface speed (a pure squeeze has no steady state)",
             });
         }
-        self.solve_core(
-            eccentricity_ratio,
-            conditions,
-            TimeTerm::Steady,
-            None,
-            false,
-        )
+        self.solve_core(eccentricity_ratio, conditions, TimeTerm::Steady, None)
     }
 
     fn set_grid(&mut self, theta0: f64) -> Result<(), ReynoldsError> {
@@ -631,15 +677,17 @@ impl ReynoldsSolver {
         Ok(())
     }
 
-    /// The switch loop around the frozen-switch linear solves.
-    fn solve_core(
+    /// The semismooth Newton solve of the complementarity problem (module docs).
+    /// Everything of a solve that does not depend on the iteration: the grid (turned for the
+    /// supply line), h at nodes and faces, the face coefficients β h³/(12μ), the Dirichlet
+    /// values, and the start (ψ, g) — `warm`'s, or a full film at ambient — with its Dirichlet
+    /// entries set.
+    fn prepare(
         &mut self,
         eps: [f64; 2],
         conditions: &OperatingConditions,
-        time: TimeTerm,
         warm: Option<(Vec<f64>, Vec<f64>)>,
-        start_tight: bool,
-    ) -> Result<Core, ReynoldsError> {
+    ) -> Result<Prepared, ReynoldsError> {
         check_eps(eps)?;
         let p = &self.params;
         if conditions.feed_pressures.len() != p.grooves.len() {
@@ -714,96 +762,173 @@ impl ReynoldsSolver {
             }
         }
         let speed = p.radius * (conditions.journal_speed - conditions.bearing_speed);
+        Ok(Prepared { h, psi, g, speed })
+    }
+
+    fn solve_core(
+        &mut self,
+        eps: [f64; 2],
+        conditions: &OperatingConditions,
+        time: TimeTerm,
+        warm: Option<(Vec<f64>, Vec<f64>)>,
+    ) -> Result<Core, ReynoldsError> {
+        let Prepared {
+            h,
+            mut psi,
+            mut g,
+            speed,
+        } = self.prepare(eps, conditions, warm)?;
+        let p = &self.params;
+        let grid = &self.grid;
+        let n = grid.len();
+        let nz = grid.n_z;
         let level = Level {
             grid,
             h: &h.node,
+            h_face: &h.face_theta,
             k_theta: &self.k_theta,
             k_z: &self.k_z,
             speed,
         };
-        let mut linear_iterations = 0;
-        let mut residual;
-        let mut flips = vec![0u8; n];
-        let mut iteration = 0;
-        // Inexact switch loop: while g still changes, the frozen systems are solved to a loose
-        // tolerance; once g stops changing, a tight solve confirms it (and the loop goes on if
-        // that solve changes g after all).
+        // Semismooth Newton (primal–dual active set) on the complementarity problem in
+        // (u, v) = (max(ψ, 0), max(−ψ, 0)) (module docs).
+        let n_unknown = grid
+            .kind
+            .iter()
+            .filter(|&&k| k == NodeKind::Unknown)
+            .count();
+        let mut merit = Merit::new(grid, &level, time, &psi, &g);
+        let mut newton = NewtonCounts::default();
+        // Start: the switch of the start state, the iterate (u, v) from its ψ.
+        set_switch(grid, &psi, &mut g);
+        let (mut u, mut v) = split(&psi);
+        let mut theta = merit.value(&level, &u, &v, time);
+        let theta0 = theta.max(f64::MIN_POSITIVE);
         let loose = (p.tolerance * 1e4).min(1e-6).max(p.tolerance);
-        // A start from a nearby answer (`start_tight`) is likely to have the final g already:
-        // solve tightly at once, and go back to loose solves only if g changes.
         let always_tight = p.linear_solver == LinearSolver::SparseLu;
-        let mut tight = always_tight || start_tight;
-        loop {
-            iteration += 1;
+        let mut tight = always_tight;
+        let mut g_new = g.clone();
+        let mut r = vec![0.0; n];
+        let residual = loop {
+            if newton.iterations >= p.max_newton_iterations {
+                return Err(ReynoldsError::ComplementarityNotConverged {
+                    iterations: newton.iterations,
+                    residual: merit.last_mass_norm,
+                    tolerance: p.tolerance,
+                    switched_last: newton.switched_last,
+                    n_unknown,
+                });
+            }
+            newton.iterations += 1;
+            // Newton step: the frozen-g system A(g) y = b (exact linearization of the mass
+            // balance; the complementarity rows set u = 0 on cavitated, v = 0 on full nodes).
             discretization::assemble(&level, &g, &self.dirichlet, time, &mut self.stencil);
+            let (_, scale) = self.stencil.residual(grid, &psi, &mut r);
+            if matches!(time, TimeTerm::Steady) {
+                // Pseudo-transient continuation (module docs): (A + D) y = b + D ψ.
+                let sigma = (theta / theta0).sqrt().min(1.0);
+                for k in 0..n {
+                    if grid.kind[k] == NodeKind::Unknown {
+                        let d = sigma * merit.weight[k];
+                        self.stencil.p[k] += d;
+                        self.stencil.rhs[k] += d * psi[k];
+                    }
+                }
+            }
+            let linear_tolerance = if tight { p.tolerance } else { loose };
+            let mut y = psi.clone();
             match p.linear_solver {
                 LinearSolver::AdiKrylov => {
                     let info = adi::solve_krylov(
                         grid,
                         &self.stencil,
-                        &mut psi,
-                        if tight { p.tolerance } else { loose },
+                        &mut y,
+                        linear_tolerance,
+                        Some(scale),
                         p.max_linear_iterations,
                         &mut self.ws,
                     )?;
-                    linear_iterations += info.iterations;
-                    residual = info.residual;
+                    newton.linear_iterations += info.iterations;
                 }
-                LinearSolver::SparseLu => {
-                    oracle::solve_lu(grid, &self.stencil, &mut psi)?;
-                    let mut r = vec![0.0; n];
-                    let (rmax, scale) = self.stencil.residual(grid, &psi, &mut r);
-                    residual = if scale > 0.0 { rmax / scale } else { 0.0 };
-                }
+                LinearSolver::SparseLu => oracle::solve_lu(grid, &self.stencil, &mut y)?,
             }
-            // Switch update.
-            let mut changed = 0;
-            let mut first = usize::MAX;
-            for k in 0..n {
-                if grid.kind[k] != NodeKind::Unknown {
-                    continue;
-                }
-                let v = psi[k];
-                if !v.is_finite() {
-                    return Err(ReynoldsError::NonFinite {
-                        what: "ψ = φ − 1",
-                        theta_index: k / nz,
-                        z_index: k % nz,
-                        iteration,
-                    });
-                }
-                let new_g = if v >= 0.0 { 1.0 } else { 0.0 };
-                if new_g != g[k] && flips[k] >= MAX_FLIPS && g[k] > 0.5 {
-                    // A node that keeps flipping is locked full (see the module docs).
-                    continue;
-                }
-                if new_g != g[k] {
-                    flips[k] = flips[k].saturating_add(1);
-                    g[k] = new_g;
-                    changed += 1;
-                    if first == usize::MAX {
-                        first = k;
-                    }
-                }
+            if let Some(k) = y.iter().position(|x| !x.is_finite()) {
+                return Err(ReynoldsError::NonFinite {
+                    what: "ψ = φ − 1",
+                    theta_index: k / nz,
+                    z_index: k % nz,
+                    iteration: newton.iterations,
+                });
             }
-            if changed == 0 {
-                if tight {
-                    break;
+            // Full step: (u⁺, v⁺) = (g y, −(1 − g) y); its switch H(y).
+            g_new.copy_from_slice(&g);
+            let switched = set_switch(grid, &y, &mut g_new);
+            newton.switched_last = switched;
+            if switched == 0 {
+                psi = y;
+                let (rmax, _) = {
+                    // The residual of the nonlinear equations at ψ (no pseudo-time shift).
+                    discretization::assemble(&level, &g, &self.dirichlet, time, &mut self.stencil);
+                    self.stencil.residual(grid, &psi, &mut r)
+                };
+                if rmax <= p.tolerance * scale || scale == 0.0 {
+                    break if scale > 0.0 { rmax / scale } else { 0.0 };
                 }
+                // The switch is right: solve it tightly (one more Newton step, same g).
                 tight = true;
+                (u, v) = split(&psi);
+                theta = merit.value(&level, &u, &v, time);
                 continue;
             }
             tight = always_tight;
-            if iteration >= p.max_switch_iterations {
-                return Err(ReynoldsError::SwitchNotConverged {
-                    iterations: iteration,
-                    changed_nodes: changed,
-                    theta_index: first / nz,
-                    z_index: first % nz,
-                    residual,
-                });
+            let (u_full, v_full) = active_split(&y, &g);
+            // Backtracking on the merit Θ = ‖R_mass(u, v)‖² + ‖w min(u, v)‖² (Armijo).
+            let mut lambda = 1.0;
+            loop {
+                let (ul, vl): (Vec<f64>, Vec<f64>) = if lambda == 1.0 {
+                    (u_full.clone(), v_full.clone())
+                } else {
+                    (
+                        u.iter()
+                            .zip(&u_full)
+                            .map(|(a, b)| a + lambda * (b - a))
+                            .collect(),
+                        v.iter()
+                            .zip(&v_full)
+                            .map(|(a, b)| a + lambda * (b - a))
+                            .collect(),
+                    )
+                };
+                let theta_l = merit.value(&level, &ul, &vl, time);
+                let sufficient = theta_l <= (1.0 - 2.0 * ARMIJO * lambda) * theta;
+                if sufficient || lambda <= LAMBDA_MIN {
+                    if !sufficient {
+                        // No decrease along the step: take the full active-set step (the
+                        // undamped primal–dual active-set iteration) and count it.
+                        newton.full_steps_without_decrease += 1;
+                        u = u_full;
+                        v = v_full;
+                        theta = merit.value(&level, &u, &v, time);
+                    } else {
+                        u = ul;
+                        v = vl;
+                        theta = theta_l;
+                    }
+                    break;
+                }
+                lambda *= 0.5;
+                newton.backtracks += 1;
             }
-        }
+            // The iterate's switch and ψ: cavitated where u < v.
+            for k in 0..n {
+                if grid.kind[k] == NodeKind::Unknown {
+                    psi[k] = u[k] - v[k];
+                    g[k] = if u[k] >= v[k] { 1.0 } else { 0.0 };
+                }
+            }
+        };
+        let iteration = newton.iterations;
+        let linear_iterations = newton.linear_iterations;
         // φ ≥ 0 (up to the solve tolerance).
         for k in 0..n {
             if psi[k] < -1.0 - 1e-9 {
@@ -831,11 +956,115 @@ impl ReynoldsSolver {
     }
 }
 
-/// Switch changes after which a node that is full again stays full (anti-cycling lock).
-/// Measured 2026-11-23: 2 instead of 4 makes the inverse cycle 30 % cheaper but moves steady
-/// attitudes by up to 0.6° and Sommerfeld numbers by up to 0.9 % (README, "Inverse solver
-/// with the Reynolds film"); the lock is a parameter of the discrete answer.
-const MAX_FLIPS: u8 = 4;
+/// Armijo constant t of the backtracking line search and the shortest step tried.
+const ARMIJO: f64 = 1e-4;
+const LAMBDA_MIN: f64 = 1.0 / 64.0;
+
+/// Counters of one semismooth Newton solve.
+#[derive(Debug, Clone, Copy, Default)]
+struct NewtonCounts {
+    iterations: usize,
+    linear_iterations: usize,
+    backtracks: usize,
+    /// Steps where no λ ≥ 1/64 decreased the merit and the full step was taken.
+    full_steps_without_decrease: usize,
+    /// Unknowns whose switch the last Newton step changed.
+    switched_last: usize,
+}
+
+/// The merit function Θ(u, v) = ‖R_mass(u, v)‖₂² + ‖w ∘ min(u, v)‖₂² of the line search:
+/// the mass residual with content u − v and pressure variable u, and the complementarity
+/// violation weighted by w_k, the cell's Couette outflow (|U|/2) h_k Δz_k plus its time term
+/// V h_k/Δt: the flux that a unit error in ψ of node k carries, so both parts are in m³/s.
+struct Merit {
+    weight: Vec<f64>,
+    mass: Vec<f64>,
+    pressure: Vec<f64>,
+    content: Vec<f64>,
+    last_mass_norm: f64,
+}
+
+impl Merit {
+    fn new(grid: &Grid, lv: &Level, time: TimeTerm, psi: &[f64], g: &[f64]) -> Self {
+        let n = grid.len();
+        let v = grid.radius * grid.d_theta * grid.dz;
+        let weight = (0..n)
+            .map(|k| {
+                let step = match time {
+                    TimeTerm::Step { dt, .. } => v * lv.h[k] / dt,
+                    TimeTerm::Steady => 0.0,
+                };
+                0.5 * lv.speed.abs() * lv.h[k] * grid.row_width(k % grid.n_z) + step
+            })
+            .collect();
+        // Dirichlet entries of the two variables are fixed: ψ_D and g_D ψ_D.
+        let content = psi.to_vec();
+        let pressure = psi.iter().zip(g).map(|(x, gk)| gk * x).collect();
+        Self {
+            weight,
+            mass: vec![0.0; n],
+            pressure,
+            content,
+            last_mass_norm: f64::NAN,
+        }
+    }
+
+    fn value(&mut self, lv: &Level, u: &[f64], v: &[f64], time: TimeTerm) -> f64 {
+        let grid = lv.grid;
+        let mut comp = 0.0;
+        for k in 0..grid.len() {
+            if grid.kind[k] == NodeKind::Unknown {
+                self.content[k] = u[k] - v[k];
+                self.pressure[k] = u[k];
+                let c = self.weight[k] * u[k].min(v[k]);
+                comp += c * c;
+            }
+        }
+        let m =
+            discretization::mass_residual(lv, &self.content, &self.pressure, time, &mut self.mass);
+        self.last_mass_norm = m;
+        m * m + comp
+    }
+}
+
+/// (u, v) = (max(ψ, 0), max(−ψ, 0)).
+fn split(psi: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    (
+        psi.iter().map(|x| x.max(0.0)).collect(),
+        psi.iter().map(|x| (-x).max(0.0)).collect(),
+    )
+}
+
+/// The full Newton step's (u⁺, v⁺) from the frozen-g solution y: u⁺ = y, v⁺ = 0 on full nodes;
+/// u⁺ = 0, v⁺ = −y on cavitated ones.
+fn active_split(y: &[f64], g: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    (
+        y.iter()
+            .zip(g)
+            .map(|(y, g)| if *g > 0.5 { *y } else { 0.0 })
+            .collect(),
+        y.iter()
+            .zip(g)
+            .map(|(y, g)| if *g > 0.5 { 0.0 } else { -*y })
+            .collect(),
+    )
+}
+
+/// g = H(ψ) (1 where ψ ≥ 0, else 0) on the unknowns; Dirichlet nodes keep theirs. Returns how
+/// many unknowns changed state.
+fn set_switch(grid: &Grid, psi: &[f64], g: &mut [f64]) -> usize {
+    let mut changed = 0;
+    for k in 0..psi.len() {
+        if grid.kind[k] == NodeKind::Unknown {
+            let new_g = if psi[k] >= 0.0 { 1.0 } else { 0.0 };
+            if new_g != g[k] {
+                changed += 1;
+                g[k] = new_g;
+            }
+        }
+    }
+    changed
+}
 
 fn check_eps(eps: [f64; 2]) -> Result<(), ReynoldsError> {
     let m = eps[0].hypot(eps[1]);

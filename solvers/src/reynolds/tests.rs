@@ -187,3 +187,234 @@ fn a_step_started_from_a_nearby_answer_gives_the_same_film() {
         Err(ReynoldsError::InvalidParameter { name: "start", .. })
     ));
 }
+
+/// Lemke's complementary pivoting (Lemke 1965; the LCP oracle of Giacopini et al. 2010) on a
+/// dense LCP: find z ≥ 0 with w = M z + q ≥ 0 and zᵀw = 0. Returns (z, w).
+fn lemke(m: &nalgebra::DMatrix<f64>, q: &nalgebra::DVector<f64>) -> (Vec<f64>, Vec<f64>) {
+    let n = q.len();
+    if q.iter().all(|&x| x >= 0.0) {
+        return (vec![0.0; n], q.iter().copied().collect());
+    }
+    // Tableau rows: w − M z − e z0 = q; columns 0..n w, n..2n z, 2n z0, 2n+1 rhs.
+    let cols = 2 * n + 2;
+    let mut t = nalgebra::DMatrix::<f64>::zeros(n, cols);
+    for i in 0..n {
+        t[(i, i)] = 1.0;
+        for j in 0..n {
+            t[(i, n + j)] = -m[(i, j)];
+        }
+        t[(i, 2 * n)] = -1.0;
+        t[(i, 2 * n + 1)] = q[i];
+    }
+    let mut basis: Vec<usize> = (0..n).collect();
+    let pivot = |t: &mut nalgebra::DMatrix<f64>, r: usize, c: usize| {
+        let pv = t[(r, c)];
+        for j in 0..cols {
+            t[(r, j)] /= pv;
+        }
+        for i in 0..n {
+            if i != r {
+                let f = t[(i, c)];
+                if f != 0.0 {
+                    for j in 0..cols {
+                        t[(i, j)] -= f * t[(r, j)];
+                    }
+                }
+            }
+        }
+    };
+    // z0 enters; the most negative q leaves.
+    let r0 = (0..n)
+        .min_by(|&a, &b| q[a].partial_cmp(&q[b]).unwrap())
+        .unwrap();
+    pivot(&mut t, r0, 2 * n);
+    let mut leaving = basis[r0];
+    basis[r0] = 2 * n;
+    for _ in 0..50 * n {
+        let entering = if leaving < n {
+            leaving + n
+        } else {
+            leaving - n
+        };
+        let mut best: Option<(usize, f64)> = None;
+        for i in 0..n {
+            let a = t[(i, entering)];
+            if a > 1e-12 {
+                let ratio = t[(i, 2 * n + 1)] / a;
+                if best.is_none_or(|(_, b)| ratio < b - 1e-15) {
+                    best = Some((i, ratio));
+                }
+            }
+        }
+        let (r, _) = best.expect("Lemke: ray termination (no solution found)");
+        pivot(&mut t, r, entering);
+        leaving = basis[r];
+        basis[r] = entering;
+        if leaving == 2 * n {
+            let mut z = vec![0.0; n];
+            let mut w = vec![0.0; n];
+            for (i, &b) in basis.iter().enumerate() {
+                let x = t[(i, 2 * n + 1)];
+                if b < n {
+                    w[b] = x;
+                } else if b < 2 * n {
+                    z[b - n] = x;
+                }
+            }
+            return (z, w);
+        }
+    }
+    panic!("Lemke: no termination");
+}
+
+/// Item 2 of the second-generation film: on random small-grid time steps (whirl, squeeze,
+/// feed above and below p_cav), the semismooth Newton answer (both linear solvers) satisfies
+/// complementarity on every node and equals the solution of the same discrete problem written
+/// as an LCP in (u, v) = (max(ψ, 0), max(−ψ, 0)) and solved by Lemke's pivoting — to round-off.
+/// The LCP's matrices are probed column by column from `discretization::mass_residual` (the
+/// flux form), not taken from the assembled stencil the Newton solves use.
+#[test]
+fn semismooth_newton_matches_lemke_lcp_oracle() {
+    use super::discretization::mass_residual;
+    use nalgebra::{DMatrix, DVector};
+    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut uniform = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut worst_psi: f64 = 0.0;
+    let mut cavitated_seen = 0;
+    for case in 0..12 {
+        let solver = if case % 2 == 0 {
+            LinearSolver::SparseLu
+        } else {
+            LinearSolver::AdiKrylov
+        };
+        let mut p = grooved(solver);
+        p.grid = GridParams {
+            n_theta: 16,
+            n_z: 7,
+        };
+        p.grooves[0].angular_width = 0.5;
+        p.grooves[0].axial_width = 0.01;
+        let mut s = ReynoldsSolver::new(p.clone()).unwrap();
+        let a0 = 2.0 * std::f64::consts::PI * uniform();
+        let e0 = 0.2 + 0.6 * uniform();
+        let eps0 = [e0 * a0.cos(), e0 * a0.sin()];
+        let a1 = a0 + 0.3 * (uniform() - 0.5);
+        let e1 = (e0 + 0.2 * (uniform() - 0.5)).clamp(0.05, 0.95);
+        let eps1 = [e1 * a1.cos(), e1 * a1.sin()];
+        let feed = if case % 3 == 0 { -1e4 } else { 3e5 * uniform() };
+        let c = OperatingConditions {
+            journal_speed: 300.0 * (0.2 + uniform()),
+            bearing_speed: 0.0,
+            feed_pressures: vec![feed],
+        };
+        let dt = 1e-5 + 2e-4 * uniform();
+        let state = s.initial_state(eps0);
+        let input = StepInput {
+            eccentricity_ratio: eps1,
+            dt,
+            conditions: c.clone(),
+        };
+        let (sol, _) = s.solve_step(&state, &input).unwrap();
+        // Complementarity on every node of the answer.
+        for ((&pr, &ff), &sw) in sol
+            .pressure
+            .iter()
+            .zip(sol.film_fraction.iter())
+            .zip(sol.switch.iter())
+        {
+            assert!(pr >= p.cavitation_pressure, "case {case}: p {pr} < p_cav");
+            assert!((0.0..=1.0).contains(&ff), "case {case}: film fraction {ff}");
+            if sw < 0.5 {
+                assert_eq!(
+                    pr, p.cavitation_pressure,
+                    "case {case}: cavitated with p > p_cav"
+                );
+            }
+        }
+        cavitated_seen += sol.switch.iter().filter(|&&g| g < 0.5).count();
+
+        // The oracle: the same step as an LCP.
+        let prep = s.prepare(eps1, &c, None).unwrap();
+        let old_h = FilmThickness::new(&s.grid, p.clearance, eps0);
+        let old_content: Vec<f64> = old_h
+            .node
+            .iter()
+            .zip(state.density_ratio.iter())
+            .map(|(h, phi)| h * phi)
+            .collect();
+        let level = Level {
+            grid: &s.grid,
+            h: &prep.h.node,
+            h_face: &prep.h.face_theta,
+            k_theta: &s.k_theta,
+            k_z: &s.k_z,
+            speed: prep.speed,
+        };
+        let time = TimeTerm::Step {
+            dt,
+            old_content: &old_content,
+            old_outflow: None,
+        };
+        let unknowns: Vec<usize> = (0..s.grid.len())
+            .filter(|&k| s.grid.kind[k] == NodeKind::Unknown)
+            .collect();
+        let nu = unknowns.len();
+        let mut content = prep.psi.clone();
+        let mut pressure: Vec<f64> = prep.psi.iter().zip(&prep.g).map(|(x, g)| x * g).collect();
+        for &k in &unknowns {
+            content[k] = 0.0;
+            pressure[k] = 0.0;
+        }
+        let mut r0 = vec![0.0; s.grid.len()];
+        mass_residual(&level, &content, &pressure, time, &mut r0);
+        let mut cm = DMatrix::<f64>::zeros(nu, nu);
+        let mut pm = DMatrix::<f64>::zeros(nu, nu);
+        let mut r = vec![0.0; s.grid.len()];
+        for (col, &k) in unknowns.iter().enumerate() {
+            content[k] = 1.0;
+            mass_residual(&level, &content, &pressure, time, &mut r);
+            content[k] = 0.0;
+            for (row, &l) in unknowns.iter().enumerate() {
+                cm[(row, col)] = r[l] - r0[l];
+            }
+            pressure[k] = 1.0;
+            mass_residual(&level, &content, &pressure, time, &mut r);
+            pressure[k] = 0.0;
+            for (row, &l) in unknowns.iter().enumerate() {
+                pm[(row, col)] = r[l] - r0[l];
+            }
+        }
+        // C (u − v) + P u + r0 = 0  ⇔  v = C⁻¹ (C + P) u + C⁻¹ r0.
+        let lu = cm.clone().lu();
+        let m = lu.solve(&(&cm + &pm)).unwrap();
+        let q = lu
+            .solve(&DVector::from_iterator(nu, unknowns.iter().map(|&l| r0[l])))
+            .unwrap();
+        let (u, v) = lemke(&m, &q);
+        let psi_max = sol
+            .density_ratio
+            .iter()
+            .map(|phi| (phi - 1.0).abs())
+            .fold(0.0, f64::max);
+        for (idx, &k) in unknowns.iter().enumerate() {
+            let psi_solver = sol.density_ratio.as_slice().unwrap()[k] - 1.0;
+            let psi_oracle = u[idx] - v[idx];
+            let d = (psi_solver - psi_oracle).abs() / psi_max;
+            worst_psi = worst_psi.max(d);
+            assert!(
+                d < 1e-8,
+                "case {case} ({solver:?}) node {k}: ψ {psi_solver:e} vs Lemke {psi_oracle:e}"
+            );
+        }
+    }
+    assert!(
+        cavitated_seen > 100,
+        "the cases must cavitate: {cavitated_seen}"
+    );
+    eprintln!("semismooth Newton vs Lemke: worst |Δψ|/max|ψ| = {worst_psi:.1e}");
+}
