@@ -147,12 +147,30 @@ pub enum SupplyModel {
 }
 
 /// Time discretization of [`ReynoldsSolver::solve_step`].
+///
+/// With content c = h φ and net outflow D(c) of a node (design.md §2):
+///
+/// ```text
+///   backward Euler:  (c^{n+1} − c^n)/Δt + D^{n+1} = 0
+///   BDF2:            (a₀ c^{n+1} − a₁ c^n + a₂ c^{n−1})/Δt_n + D^{n+1} = 0,
+///                    ω = Δt_n/Δt_{n−1}, a₀ = (1+2ω)/(1+ω), a₁ = 1+ω, a₂ = ω²/(1+ω)
+///   Crank–Nicolson:  (c^{n+1} − c^n)/Δt + ½ (D^{n+1} + D^n) = 0
+/// ```
+///
+/// BDF2 with variable steps (Hairer, Nørsett & Wanner, *Solving ODEs I*, §III.5) is
+/// backward Euler with Δt_eff = Δt_n/a₀ and the old content (a₁ c^n − a₂ c^{n−1})/a₀: the same
+/// frozen-switch systems and M-matrices. It starts with a backward-Euler step (no c^{n−1}) and
+/// falls back to one where its answer would have a negative film content (BDF2 does not
+/// preserve positivity). Crank–Nicolson is not L-stable: on the stiff Elrod pressure modes its
+/// amplification tends to −1 and the film rings from step to step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TimeScheme {
-    /// Backward Euler (default, L-stable).
-    #[default]
+    /// Backward Euler: first order, L-stable.
     BackwardEuler,
-    /// Crank–Nicolson (trapezoidal): no artificial damping of a whirling film.
+    /// Variable-step BDF2: second order, L-stable (A-stable for step ratios ω ≤ 1 + √2).
+    #[default]
+    Bdf2,
+    /// Crank–Nicolson (trapezoidal): second order, A- but not L-stable.
     CrankNicolson,
 }
 
@@ -217,7 +235,7 @@ pub struct ReynoldsParams {
 
 impl ReynoldsParams {
     /// A plain bearing with the defaults: β = 1.5 GPa, p_amb = p_cav = 0, no grooves, default
-    /// grid, backward Euler, ADI-Krylov, tolerance 1e-10.
+    /// grid, BDF2 (backward-Euler start), ADI-Krylov, tolerance 1e-10.
     pub fn plain(radius: f64, length: f64, clearance: f64, viscosity: f64) -> Self {
         Self {
             radius,
@@ -230,7 +248,7 @@ impl ReynoldsParams {
             grooves: Vec::new(),
             supply: SupplyModel::Grooves,
             grid: GridParams::default(),
-            time_scheme: TimeScheme::BackwardEuler,
+            time_scheme: TimeScheme::default(),
             linear_solver: LinearSolver::AdiKrylov,
             tolerance: 1e-10,
             max_newton_iterations: 100,
@@ -269,6 +287,9 @@ pub struct FilmState {
     /// Net outflow of each node at this level, m³/s (Crank–Nicolson needs it; None: the next
     /// step falls back to backward Euler once).
     pub net_outflow: Option<Array2<f64>>,
+    /// Content h φ of each node at the level before this one and the step from there to this
+    /// one, s (BDF2 needs them; None: the next step is a backward-Euler step).
+    pub previous_level: Option<(Array2<f64>, f64)>,
 }
 
 /// Everything a solve returns (SI units; angles in rad; locations as (θ, z)).
@@ -514,6 +535,7 @@ impl ReynoldsSolver {
             density_ratio: Array2::from_elem((n_theta, n_z), 1.0 + psi),
             full_film: Array2::from_elem((n_theta, n_z), true),
             net_outflow: None,
+            previous_level: None,
         }
     }
 
@@ -572,7 +594,24 @@ impl ReynoldsSolver {
                 .net_outflow
                 .as_ref()
                 .map(|a| a.iter().copied().collect()),
-            TimeScheme::BackwardEuler => None,
+            TimeScheme::BackwardEuler | TimeScheme::Bdf2 => None,
+        };
+        // BDF2 as backward Euler with Δt/a₀ and old content (a₁ cⁿ − a₂ cⁿ⁻¹)/a₀ (TimeScheme).
+        let bdf2: Option<(f64, Vec<f64>)> = match (&self.params.time_scheme, &state.previous_level)
+        {
+            (TimeScheme::Bdf2, Some((previous, dt_prev)))
+                if previous.len() == n && *dt_prev > 0.0 && dt_prev.is_finite() =>
+            {
+                let w = input.dt / dt_prev;
+                let (a0, a1, a2) = ((1.0 + 2.0 * w) / (1.0 + w), 1.0 + w, w * w / (1.0 + w));
+                let history = old_content
+                    .iter()
+                    .zip(previous.iter())
+                    .map(|(c, cp)| (a1 * c - a2 * cp) / a0)
+                    .collect();
+                Some((input.dt / a0, history))
+            }
+            _ => None,
         };
         let first = match start {
             Some(f) if f.density_ratio.len() == n && f.full_film.len() == n => f,
@@ -591,17 +630,41 @@ impl ReynoldsSolver {
             .iter()
             .map(|&f| if f { 1.0 } else { 0.0 })
             .collect();
-        let time = TimeTerm::Step {
+        let backward_euler = TimeTerm::Step {
             dt: input.dt,
             old_content: &old_content,
             old_outflow: old_outflow.as_deref(),
         };
-        let core = self.solve_core(
-            input.eccentricity_ratio,
-            &input.conditions,
-            time,
-            Some((psi0, g0)),
-        )?;
+        let core = match &bdf2 {
+            Some((dt_eff, history)) => {
+                let time = TimeTerm::Step {
+                    dt: *dt_eff,
+                    old_content: history,
+                    old_outflow: None,
+                };
+                match self.solve_core(
+                    input.eccentricity_ratio,
+                    &input.conditions,
+                    time,
+                    Some((psi0.clone(), g0.clone())),
+                ) {
+                    // Positivity fallback: the same step by backward Euler.
+                    Err(ReynoldsError::NegativeFilmFraction { .. }) => self.solve_core(
+                        input.eccentricity_ratio,
+                        &input.conditions,
+                        backward_euler,
+                        Some((psi0, g0)),
+                    )?,
+                    other => other?,
+                }
+            }
+            None => self.solve_core(
+                input.eccentricity_ratio,
+                &input.conditions,
+                backward_euler,
+                Some((psi0, g0)),
+            )?,
+        };
         let sol = outputs::film_solution(
             &self.params,
             &input.conditions,
@@ -622,6 +685,10 @@ impl ReynoldsSolver {
             full_film: Array2::from_shape_vec(shape, core.g.iter().map(|&g| g > 0.5).collect())
                 .expect("grid shape"),
             net_outflow: Some(Array2::from_shape_vec(shape, out).expect("grid shape")),
+            previous_level: Some((
+                Array2::from_shape_vec(shape, old_content).expect("grid shape"),
+                input.dt,
+            )),
         };
         Ok((sol, new_state))
     }
@@ -808,12 +875,17 @@ impl ReynoldsSolver {
         let always_tight = p.linear_solver == LinearSolver::SparseLu;
         let mut tight = always_tight;
         let mut g_new = g.clone();
+        // How often each unknown changed state in this solve, and whether the solve has gone
+        // over to single flips (Murty's least-index rule, below).
+        let mut flips = vec![0u32; n];
+        let mut last_residual = f64::NAN;
+        let mut single_flips = false;
         let mut r = vec![0.0; n];
         let residual = loop {
             if newton.iterations >= p.max_newton_iterations {
                 return Err(ReynoldsError::ComplementarityNotConverged {
                     iterations: newton.iterations,
-                    residual: merit.last_mass_norm,
+                    residual: last_residual,
                     tolerance: p.tolerance,
                     switched_last: newton.switched_last,
                     n_unknown,
@@ -864,21 +936,48 @@ impl ReynoldsSolver {
             g_new.copy_from_slice(&g);
             let switched = set_switch(grid, &y, &mut g_new);
             newton.switched_last = switched;
-            if switched == 0 {
+            // The nonlinear residual at y with its own switch H(y): converged if small (also
+            // when nodes with |ψ| at round-off level flip between equally valid states).
+            discretization::assemble(&level, &g_new, &self.dirichlet, time, &mut self.stencil);
+            let (rmax, _) = self.stencil.residual(grid, &y, &mut r);
+            last_residual = if scale > 0.0 { rmax / scale } else { 0.0 };
+            if rmax <= p.tolerance * scale || scale == 0.0 {
                 psi = y;
-                let (rmax, _) = {
-                    // The residual of the nonlinear equations at ψ (no pseudo-time shift).
-                    discretization::assemble(&level, &g, &self.dirichlet, time, &mut self.stencil);
-                    self.stencil.residual(grid, &psi, &mut r)
-                };
-                if rmax <= p.tolerance * scale || scale == 0.0 {
-                    break if scale > 0.0 { rmax / scale } else { 0.0 };
-                }
+                g.copy_from_slice(&g_new);
+                break if scale > 0.0 { rmax / scale } else { 0.0 };
+            }
+            if switched == 0 {
                 // The switch is right: solve it tightly (one more Newton step, same g).
+                psi = y;
                 tight = true;
                 (u, v) = split(&psi);
                 theta = merit.value(&level, &u, &v, time);
                 continue;
+            }
+            // A node that changes state a fifth time marks a cycle of the simultaneous update
+            // (possible for a P-matrix problem; degenerate nodes with ψ ≈ 0). From then on this
+            // solve changes one node per step — the least index among those whose sign
+            // disagrees with g — with tight solves: Murty's (1974) least-index complementary
+            // pivoting, which terminates finitely for every P-matrix LCP (the discrete JFO
+            // problem of a time step is one: all its switch patterns give M-matrices).
+            if !single_flips && (0..n).any(|k| g_new[k] != g[k] && flips[k] >= CYCLE_FLIPS) {
+                single_flips = true;
+                newton.single_flip_mode = true;
+            }
+            if single_flips {
+                let k = (0..n).find(|&k| g_new[k] != g[k]).expect("switched > 0");
+                flips[k] += 1;
+                g[k] = g_new[k];
+                psi = y;
+                tight = true;
+                (u, v) = split(&psi);
+                theta = merit.value(&level, &u, &v, time);
+                continue;
+            }
+            for k in 0..n {
+                if g_new[k] != g[k] {
+                    flips[k] += 1;
+                }
             }
             tight = always_tight;
             let (u_full, v_full) = active_split(&y, &g);
@@ -956,6 +1055,10 @@ impl ReynoldsSolver {
     }
 }
 
+/// Changes of state of one node after which a solve goes over to single flips (a cycle of the
+/// simultaneous update); a change of strategy, not a lock.
+const CYCLE_FLIPS: u32 = 4;
+
 /// Armijo constant t of the backtracking line search and the shortest step tried.
 const ARMIJO: f64 = 1e-4;
 const LAMBDA_MIN: f64 = 1.0 / 64.0;
@@ -970,6 +1073,8 @@ struct NewtonCounts {
     full_steps_without_decrease: usize,
     /// Unknowns whose switch the last Newton step changed.
     switched_last: usize,
+    /// Whether the solve went over to single flips (Murty's rule).
+    single_flip_mode: bool,
 }
 
 /// The merit function Θ(u, v) = ‖R_mass(u, v)‖₂² + ‖w ∘ min(u, v)‖₂² of the line search:
