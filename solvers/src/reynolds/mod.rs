@@ -879,6 +879,7 @@ impl ReynoldsSolver {
         // over to single flips (Murty's least-index rule, below).
         let mut flips = vec![0u32; n];
         let mut last_residual = f64::NAN;
+        let (mut flipped_last, mut flipped_before_last) = (Vec::new(), Vec::new());
         let mut single_flips = false;
         let mut r = vec![0.0; n];
         let residual = loop {
@@ -954,16 +955,23 @@ impl ReynoldsSolver {
                 theta = merit.value(&level, &u, &v, time);
                 continue;
             }
-            // A node that changes state a fifth time marks a cycle of the simultaneous update
-            // (possible for a P-matrix problem; degenerate nodes with ψ ≈ 0). From then on this
-            // solve changes one node per step — the least index among those whose sign
-            // disagrees with g — with tight solves: Murty's (1974) least-index complementary
-            // pivoting, which terminates finitely for every P-matrix LCP (the discrete JFO
-            // problem of a time step is one: all its switch patterns give M-matrices).
-            if !single_flips && (0..n).any(|k| g_new[k] != g[k] && flips[k] >= CYCLE_FLIPS) {
+            // A cycle of the simultaneous update (possible for a P-matrix problem, with
+            // degenerate nodes at ψ ≈ 0): the same nodes change state as two steps before (a
+            // period-2 cycle, the one seen), or a node has changed state CYCLE_FLIPS times. From
+            // then on this solve changes one node per step — the least index among those whose
+            // sign disagrees with g — with tight solves: Murty's (1974) least-index
+            // complementary pivoting, which terminates finitely for every P-matrix LCP (the
+            // discrete JFO problem of a time step is one: all its switch patterns give
+            // M-matrices).
+            let flipped: Vec<usize> = (0..n).filter(|&k| g_new[k] != g[k]).collect();
+            if !single_flips
+                && (flipped == flipped_before_last
+                    || flipped.iter().any(|&k| flips[k] >= CYCLE_FLIPS))
+            {
                 single_flips = true;
                 newton.single_flip_mode = true;
             }
+            flipped_before_last = std::mem::replace(&mut flipped_last, flipped);
             if single_flips {
                 let k = (0..n).find(|&k| g_new[k] != g[k]).expect("switched > 0");
                 flips[k] += 1;
@@ -1057,7 +1065,7 @@ impl ReynoldsSolver {
 
 /// Changes of state of one node after which a solve goes over to single flips (a cycle of the
 /// simultaneous update); a change of strategy, not a lock.
-const CYCLE_FLIPS: u32 = 4;
+const CYCLE_FLIPS: u32 = 8;
 
 /// Armijo constant t of the backtracking line search and the shortest step tried.
 const ARMIJO: f64 = 1e-4;
