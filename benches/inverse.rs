@@ -4,7 +4,7 @@
 //! 0.6 kN second-order side load), at the default step of 1° crank.
 //!
 //! - `inverse/one_cycle_short_bearing`: run-in of 8 steps + one 360-step cycle with the analytic
-//!   short-bearing film (Crank–Nicolson): the cost of the Newton machinery alone.
+//!   short-bearing film (default time scheme, BDF2): the cost of the Newton machinery alone.
 //! - `inverse/periodic_short_bearing`: the whole solve to a periodic orbit (default tolerances).
 use criterion::Criterion;
 use jbearing_solvers::inverse::{
@@ -45,7 +45,7 @@ fn short_film() -> ShortBearingFilm {
         length: 18.288e-3,
         radial_clearance: 48.9e-6,
         viscosity: 0.02,
-        scheme: TimeScheme::CrankNicolson,
+        scheme: TimeScheme::default(),
     })
     .unwrap()
 }

@@ -20,12 +20,10 @@ use jbearing_solvers::mobility::{
 
 use jbearing_solvers::inverse::{
     InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, ReynoldsFilm,
-    ShortBearingFilm, ShortBearingParams, TimeScheme, solve_inverse,
+    ShortBearingFilm, ShortBearingParams, solve_inverse,
 };
 use jbearing_solvers::load::LoadHistory;
-use jbearing_solvers::reynolds::{
-    GridParams, Groove as ReynoldsGroove, ReynoldsParams, TimeScheme as ReynoldsTimeScheme,
-};
+use jbearing_solvers::reynolds::{GridParams, Groove as ReynoldsGroove, ReynoldsParams};
 use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
 use ndarray::Array3;
 
@@ -155,11 +153,7 @@ pub fn run_rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
                 length: case.length,
                 radial_clearance: case.radial_clearance,
                 viscosity: case.viscosity,
-                scheme: if case.solver.crank_nicolson {
-                    TimeScheme::CrankNicolson
-                } else {
-                    TimeScheme::BackwardEuler
-                },
+                scheme: case.solver.time_scheme,
             })
             .map_err(|e| fail(e.to_string()))?;
             let solution = solve_inverse(&params, &history, &mut film, &mut adapter)
@@ -200,11 +194,7 @@ pub fn reynolds_params(case: &Case) -> ReynoldsParams {
             n_theta: case.n_theta,
             n_z: case.n_z,
         },
-        time_scheme: if case.solver.crank_nicolson {
-            ReynoldsTimeScheme::CrankNicolson
-        } else {
-            ReynoldsTimeScheme::BackwardEuler
-        },
+        time_scheme: case.solver.time_scheme,
         ..ReynoldsParams::plain(
             case.radius,
             case.length,

@@ -38,4 +38,5 @@ pub mod reynolds;
 pub mod ritz;
 pub mod slider_crank;
 pub mod squeeze_film;
+pub mod time_scheme;
 pub mod tridiagonal;

@@ -20,6 +20,7 @@ use std::path::{Path, PathBuf};
 
 use jbearing_solvers::closed_form::{ClosedFormError, ClosedFormModel};
 use jbearing_solvers::mobility::{LoadInterpolation, TabulatedLoad};
+use jbearing_solvers::time_scheme::TimeScheme;
 
 pub use self::error::{CaseError, Locator};
 use self::schema::*;
@@ -137,8 +138,8 @@ pub struct SolverOptions {
     pub force_tolerance: f64,
     /// Film-collapse limit on |ε|.
     pub eccentricity_limit: f64,
-    /// Crank–Nicolson time stepping (else backward Euler).
-    pub crank_nicolson: bool,
+    /// Time discretization of the rigorous film (the solvers crate's one scheme and default).
+    pub time_scheme: TimeScheme,
     /// Mobility model.
     pub mobility_model: MobilityModelChoice,
     /// ε at the start.
@@ -354,10 +355,10 @@ impl Case {
                 },
                 "film model of the inverse solver",
             ),
-            Parameter::flag(
-                "crank_nicolson",
-                self.solver.crank_nicolson,
-                "Crank-Nicolson time stepping (else backward Euler)",
+            Parameter::text(
+                "time_scheme",
+                self.solver.time_scheme.name(),
+                "time discretization of the rigorous film (bdf2, backward_euler, crank_nicolson)",
             ),
         ];
         for (i, g) in self.grooves.iter().enumerate() {
@@ -1092,6 +1093,17 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             ));
         }
     };
+    let time_scheme = match s.time_scheme.as_str() {
+        "bdf2" => TimeScheme::Bdf2,
+        "backward_euler" => TimeScheme::BackwardEuler,
+        "crank_nicolson" => TimeScheme::CrankNicolson,
+        other => {
+            return Err(ctx.err(
+                "solver.time_scheme",
+                format!("'{other}' is not one of: bdf2, backward_euler, crank_nicolson"),
+            ));
+        }
+    };
     let rigorous_film = match s.rigorous_film.as_str() {
         "reynolds" => RigorousFilm::Reynolds,
         "short_bearing" => RigorousFilm::ShortBearing,
@@ -1149,7 +1161,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             periodicity_tolerance,
             force_tolerance,
             eccentricity_limit: s.eccentricity_limit,
-            crank_nicolson: s.crank_nicolson,
+            time_scheme,
             mobility_model,
             initial_eccentricity: s.initial_eccentricity,
             rigorous_film,

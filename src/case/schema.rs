@@ -169,8 +169,8 @@ pub struct SolverSection {
     pub force_tolerance: f64,
     #[serde(default = "default_eccentricity_limit")]
     pub eccentricity_limit: f64,
-    #[serde(default = "default_true")]
-    pub crank_nicolson: bool,
+    #[serde(default = "default_time_scheme")]
+    pub time_scheme: String,
     #[serde(default = "default_mobility_model")]
     pub mobility_model: String,
     #[serde(default)]
@@ -187,7 +187,7 @@ impl Default for SolverSection {
             periodicity_tolerance: default_periodicity(),
             force_tolerance: default_force_tolerance(),
             eccentricity_limit: default_eccentricity_limit(),
-            crank_nicolson: true,
+            time_scheme: default_time_scheme(),
             mobility_model: default_mobility_model(),
             initial_eccentricity: [0.0, 0.0],
             rigorous_film: default_rigorous_film(),
@@ -285,6 +285,12 @@ fn default_samples() -> usize {
 fn default_snapshots() -> usize {
     36
 }
+fn default_time_scheme() -> String {
+    jbearing_solvers::time_scheme::TimeScheme::default()
+        .name()
+        .to_string()
+}
+
 fn default_true() -> bool {
     true
 }

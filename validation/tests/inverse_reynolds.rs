@@ -49,14 +49,14 @@ fn constant_load_gives_the_steady_load_solution() {
     // The default 120 × 31 grid: on 48 × 13 Newton stalls on a film-force jump (residual 1.1e-2
     // at 80° of the first cycle); here stalls stay below the default accept_tolerance. ~5 s.
     let w = [0.0, -3000.0];
-    let mut steady = ReynoldsSolver::new(params_on(TimeScheme::BackwardEuler, 120, 31)).unwrap();
+    let mut steady = ReynoldsSolver::new(params_on(TimeScheme::default(), 120, 31)).unwrap();
     let cond = OperatingConditions {
         journal_speed: OMEGA,
         bearing_speed: 0.0,
         feed_pressures: vec![FEED],
     };
     let (sol, info) = steady.solve_steady_load(w, &cond).unwrap();
-    let mut film = ReynoldsFilm::new(params_on(TimeScheme::BackwardEuler, 120, 31)).unwrap();
+    let mut film = ReynoldsFilm::new(params_on(TimeScheme::default(), 120, 31)).unwrap();
     let load = history(ConstantLoad {
         load: w,
         period: TAU / OMEGA,
@@ -82,7 +82,7 @@ fn constant_load_gives_the_steady_load_solution() {
 
 /// Over a periodic cycle the film content returns to its start: mean supply = mean leakage.
 fn supply_equals_leakage_on(n_theta: usize, n_z: usize) {
-    let mut film = ReynoldsFilm::new(params_on(TimeScheme::BackwardEuler, n_theta, n_z)).unwrap();
+    let mut film = ReynoldsFilm::new(params_on(TimeScheme::default(), n_theta, n_z)).unwrap();
     let load = history(FnLoad {
         period: TAU / OMEGA,
         load: pulse_load,
@@ -120,12 +120,12 @@ fn mean_supply_equals_mean_side_leakage_on_the_default_grid() {
     supply_equals_leakage_on(120, 31);
 }
 
-/// The half-speed whirl load with Crank–Nicolson: collapse reported, not NaN. 48 × 13, ~3 s
+/// The half-speed whirl load with the default time scheme (BDF2): collapse reported, not NaN. 48 × 13, ~3 s
 /// (measured 2026-11-23: `Collapse` at the 1 µm floor, |ε| = 0.9796, as the analytic film; at
 /// 120 × 31 the same, in 109 s).
 #[test]
 fn half_speed_whirl_load_collapses() {
-    let mut film = ReynoldsFilm::new(params(TimeScheme::CrankNicolson)).unwrap();
+    let mut film = ReynoldsFilm::new(params(TimeScheme::default())).unwrap();
     let load = history(RotatingLoad {
         magnitude: 3000.0,
         angular_speed: 0.5 * OMEGA,
@@ -161,7 +161,7 @@ fn halving_the_default_step_changes_h_min_and_power_loss_by_less_than_one_percen
         load: pulse_load,
     });
     let run = |step_deg: f64| {
-        let mut film = ReynoldsFilm::new(params(TimeScheme::BackwardEuler)).unwrap();
+        let mut film = ReynoldsFilm::new(params(TimeScheme::default())).unwrap();
         let p = InverseParams {
             step_deg,
             ..Default::default()

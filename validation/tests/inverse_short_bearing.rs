@@ -52,8 +52,8 @@ fn ocvirk_eccentricity(f: &ShortBearingFilm, w: f64) -> f64 {
 #[test]
 fn constant_load_reproduces_steady_ocvirk_solution() {
     for (w, scheme) in [
-        ([0.0, -3000.0], TimeScheme::CrankNicolson),
-        ([1200.0, 500.0], TimeScheme::CrankNicolson),
+        ([0.0, -3000.0], TimeScheme::default()),
+        ([1200.0, 500.0], TimeScheme::default()),
         ([0.0, -3000.0], TimeScheme::BackwardEuler),
     ] {
         let mut f = film(scheme);
@@ -98,7 +98,7 @@ fn constant_load_reproduces_steady_ocvirk_solution() {
 /// end in a reported collapse with finite numbers.
 #[test]
 fn half_speed_whirl_load_collapses() {
-    let mut f = film(TimeScheme::CrankNicolson);
+    let mut f = film(TimeScheme::default());
     let load = history(RotatingLoad {
         magnitude: 3000.0,
         angular_speed: 0.5 * OMEGA,
@@ -136,7 +136,7 @@ fn half_speed_whirl_load_collapses() {
     }
 }
 
-/// The trap the Crank–Nicolson default avoids: backward Euler's chord of the whirl orbit is an
+/// The trap BDF2 (the default) and Crank–Nicolson avoid: backward Euler's chord of the whirl orbit is an
 /// inward squeeze velocity ≈ |ε| ω_W (ω_W dt)/2, and the film answers it with load capacity. The
 /// same whirl load is then "carried" on an orbit that stays above the 1 µm floor.
 #[test]
@@ -159,7 +159,7 @@ fn backward_euler_invents_load_capacity_for_the_whirl_load() {
 /// has ε(t + τ/2) = −ε(t).
 #[test]
 fn half_wave_symmetric_load_gives_point_symmetric_orbit() {
-    let mut f = film(TimeScheme::CrankNicolson);
+    let mut f = film(TimeScheme::default());
     let tau = TAU / OMEGA;
     let load = history(FnLoad {
         period: tau,
@@ -205,7 +205,7 @@ fn mirrored_load_and_rotation_give_mirrored_orbit() {
         [800.0 * a.sin(), -2000.0 - 1500.0 * a.cos()]
     };
     let run = |sign: f64| {
-        let mut f = film(TimeScheme::CrankNicolson);
+        let mut f = film(TimeScheme::default());
         let load = OperatingHistory {
             load: FnLoad {
                 period: tau,
@@ -239,7 +239,7 @@ fn mirrored_load_and_rotation_give_mirrored_orbit() {
 }
 
 /// Halving the 1° default step changes the cycle-minimum h_min and the mean power loss by less
-/// than 1 % (Crank–Nicolson, second order).
+/// than 1 % (BDF2, the default: second order).
 #[test]
 fn halving_the_time_step_changes_h_min_and_power_loss_below_one_percent() {
     let tau = TAU / OMEGA;
@@ -253,7 +253,7 @@ fn halving_the_time_step_changes_h_min_and_power_loss_below_one_percent() {
         },
     });
     let run = |step_deg: f64| {
-        let mut f = film(TimeScheme::CrankNicolson);
+        let mut f = film(TimeScheme::default());
         let params = InverseParams {
             step_deg,
             tolerance: 1e-6,

@@ -39,14 +39,8 @@ pub struct ClosedFormFilm {
     pub scheme: TimeScheme,
 }
 
-/// State at t^n: position and velocity of the journal centre.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct ClosedFormState {
-    /// ε^n.
-    pub eccentricity_ratio: [f64; 2],
-    /// dε/dt at t^n (1/s).
-    pub eccentricity_rate: [f64; 2],
-}
+/// State at t^n: position, velocity and history of the journal centre.
+pub type ClosedFormState = crate::time_scheme::JournalMotion;
 
 impl ClosedFormFilm {
     /// The film response for a journal at `eps` moving with `rate` (dε/dt).
@@ -127,10 +121,7 @@ impl FilmModel for ClosedFormFilm {
     type State = ClosedFormState;
 
     fn initial_state(&self, eccentricity_ratio: [f64; 2]) -> ClosedFormState {
-        ClosedFormState {
-            eccentricity_ratio,
-            eccentricity_rate: [0.0; 2],
-        }
+        ClosedFormState::at_rest(eccentricity_ratio)
     }
 
     fn step(
@@ -145,25 +136,10 @@ impl FilmModel for ClosedFormFilm {
                 "closed-form film: time step {dt} s"
             )));
         }
-        let d = [
-            (eccentricity_ratio[0] - state.eccentricity_ratio[0]) / dt,
-            (eccentricity_ratio[1] - state.eccentricity_ratio[1]) / dt,
-        ];
-        let rate = match self.scheme {
-            TimeScheme::BackwardEuler => d,
-            TimeScheme::CrankNicolson => [
-                2.0 * d[0] - state.eccentricity_rate[0],
-                2.0 * d[1] - state.eccentricity_rate[1],
-            ],
-        };
+        let next = state.advance(self.scheme, eccentricity_ratio, dt);
+        let rate = next.eccentricity_rate;
         let r = self.response(eccentricity_ratio, rate, conditions)?;
-        Ok((
-            r,
-            ClosedFormState {
-                eccentricity_ratio,
-                eccentricity_rate: rate,
-            },
-        ))
+        Ok((r, next))
     }
 }
 

@@ -113,6 +113,8 @@ mod steady_load;
 use ndarray::Array2;
 use thiserror::Error;
 
+pub use crate::time_scheme::TimeScheme;
+
 pub use steady_load::SteadyLoadInfo;
 
 use adi::AdiWorkspace;
@@ -144,34 +146,6 @@ pub enum SupplyModel {
     /// A full-length axial line at ambient pressure on the h_max line (steady solves only):
     /// the Raimondi–Boyd / Butenschön problem (design.md §8).
     AxialLineAtMaxGap,
-}
-
-/// Time discretization of [`ReynoldsSolver::solve_step`].
-///
-/// With content c = h φ and net outflow D(c) of a node (design.md §2):
-///
-/// ```text
-///   backward Euler:  (c^{n+1} − c^n)/Δt + D^{n+1} = 0
-///   BDF2:            (a₀ c^{n+1} − a₁ c^n + a₂ c^{n−1})/Δt_n + D^{n+1} = 0,
-///                    ω = Δt_n/Δt_{n−1}, a₀ = (1+2ω)/(1+ω), a₁ = 1+ω, a₂ = ω²/(1+ω)
-///   Crank–Nicolson:  (c^{n+1} − c^n)/Δt + ½ (D^{n+1} + D^n) = 0
-/// ```
-///
-/// BDF2 with variable steps (Hairer, Nørsett & Wanner, *Solving ODEs I*, §III.5) is
-/// backward Euler with Δt_eff = Δt_n/a₀ and the old content (a₁ c^n − a₂ c^{n−1})/a₀: the same
-/// frozen-switch systems and M-matrices. It starts with a backward-Euler step (no c^{n−1}) and
-/// falls back to one where its answer would have a negative film content (BDF2 does not
-/// preserve positivity). Crank–Nicolson is not L-stable: on the stiff Elrod pressure modes its
-/// amplification tends to −1 and the film rings from step to step.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum TimeScheme {
-    /// Backward Euler: first order, L-stable.
-    BackwardEuler,
-    /// Variable-step BDF2: second order, L-stable (A-stable for step ratios ω ≤ 1 + √2).
-    #[default]
-    Bdf2,
-    /// Crank–Nicolson (trapezoidal): second order, A- but not L-stable.
-    CrankNicolson,
 }
 
 /// Linear solver of the frozen-switch systems.
@@ -602,8 +576,7 @@ impl ReynoldsSolver {
             (TimeScheme::Bdf2, Some((previous, dt_prev)))
                 if previous.len() == n && *dt_prev > 0.0 && dt_prev.is_finite() =>
             {
-                let w = input.dt / dt_prev;
-                let (a0, a1, a2) = ((1.0 + 2.0 * w) / (1.0 + w), 1.0 + w, w * w / (1.0 + w));
+                let (a0, a1, a2) = TimeScheme::bdf2_coefficients(input.dt / dt_prev);
                 let history = old_content
                     .iter()
                     .zip(previous.iter())

@@ -105,7 +105,7 @@ fn run(n_theta: usize, n_z: usize, step_deg: f64) -> Result<Row> {
         feed_pressures: vec![FEED],
     };
     let mut film = TimedFilm {
-        inner: ReynoldsFilm::new(reynolds_params(TimeScheme::BackwardEuler, n_theta, n_z))?,
+        inner: ReynoldsFilm::new(reynolds_params(TimeScheme::default(), n_theta, n_z))?,
         film_seconds: 0.0,
         krylov_iterations: 0,
     };
