@@ -168,4 +168,11 @@ pub trait FilmModel {
 
     /// Ask the model to return (or stop returning) fields in [`FilmResponse::fields`].
     fn set_capture_fields(&mut self, _capture: bool) {}
+
+    /// The exact Jacobian ∂F_film/∂ε (N per unit ε, `[[∂F_x/∂ε_x, ∂F_x/∂ε_y], [∂F_y/∂ε_x,
+    /// ∂F_y/∂ε_y]]`) of the last step this model solved, from its own linearization; None for
+    /// a model that has none (the inverse solver then takes forward differences).
+    fn force_jacobian(&mut self) -> Option<Result<[[f64; 2]; 2], FilmModelError>> {
+        None
+    }
 }

@@ -135,4 +135,14 @@ impl FilmModel for ReynoldsFilm {
     fn set_capture_fields(&mut self, capture: bool) {
         self.capture = capture;
     }
+
+    /// [`ReynoldsSolver::film_force_jacobian`]: two extra linear solves on the converged
+    /// switch of the last step.
+    fn force_jacobian(&mut self) -> Option<Result<[[f64; 2]; 2], FilmModelError>> {
+        Some(
+            self.solver
+                .film_force_jacobian()
+                .map_err(|err| FilmModelError::Solver(err.to_string())),
+        )
+    }
 }

@@ -18,11 +18,15 @@ use thiserror::Error;
 /// How the 2×2 Jacobian ∂F/∂ε is obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum JacobianMethod {
+    /// The film model's exact Jacobian from its converged linearization
+    /// ([`FilmModel::force_jacobian`]) at every Newton iteration; forward differences for a
+    /// model that has none (counted in [`InverseInfo::jacobian_evaluations`] either way).
+    #[default]
+    Exact,
     /// Forward differences at every Newton iteration (2 extra film steps per iteration).
     FiniteDifference,
     /// Broyden's (good) rank-one updates, carried across time steps; refreshed by forward
     /// differences when an update stops reducing the residual.
-    #[default]
     Broyden,
 }
 
@@ -37,7 +41,7 @@ pub struct InverseParams {
     /// W_ref (N) for the tolerance when the load passes near zero; 0 (default) takes 1 % of the
     /// cycle's peak load.
     pub reference_load: f64,
-    /// Jacobian by differences or Broyden updates (default Broyden).
+    /// Jacobian: exact (default), differences or Broyden updates.
     pub jacobian: JacobianMethod,
     /// Difference step in ε for the Jacobian (default 1e-6).
     pub fd_step: f64,
@@ -85,7 +89,7 @@ impl Default for InverseParams {
             step_deg: 1.0,
             tolerance: 1e-4,
             reference_load: 0.0,
-            jacobian: JacobianMethod::Broyden,
+            jacobian: JacobianMethod::Exact,
             fd_step: 1e-6,
             accept_tolerance: 1e-2,
             max_newton_iterations: 40,
@@ -912,7 +916,7 @@ fn newton<F: FilmModel + ?Sized>(
     at: Where,
 ) -> Result<Accepted<F::State>, InverseError> {
     let scale = norm(w).max(w_ref);
-    let mut eval = |eps: [f64; 2], stats: &mut Stats| {
+    let eval = |film: &mut F, eps: [f64; 2], stats: &mut Stats| {
         stats.evaluations += 1;
         match film.step(state, eps, dt, cond) {
             Ok((resp, st)) => {
@@ -987,7 +991,9 @@ fn newton<F: FilmModel + ?Sized>(
     };
 
     let mut eps = guess;
-    let (mut resp, mut st, mut r) = eval(eps, stats)?;
+    let (mut resp, mut st, mut r) = eval(film, eps, stats)?;
+    // Where the film model was last solved (its exact Jacobian is that point's).
+    let mut last_solved = eps;
     let mut res = norm(r) / scale;
     let mut iterations = 0;
     let mut fresh = false;
@@ -1017,8 +1023,31 @@ fn newton<F: FilmModel + ?Sized>(
             return give_up(stats, eps, resp, st, res, iterations);
         }
         iterations += 1;
-        if !jac.valid || params.jacobian == JacobianMethod::FiniteDifference {
-            jac.m = fd_jacobian(&mut eval, eps, resp.film_force, w, fd_h, stats)?;
+        let exact = match params.jacobian {
+            JacobianMethod::Exact => {
+                if last_solved != eps {
+                    eval(film, eps, stats)?;
+                    last_solved = eps;
+                }
+                film.force_jacobian()
+            }
+            _ => None,
+        };
+        if let Some(m) = exact {
+            stats.jacobians += 1;
+            jac.m = m.map_err(|source| InverseError::Film {
+                time: at.time,
+                crank_angle_deg: at.crank_angle_deg,
+                cycle: at.cycle,
+                eccentricity_ratio: eps,
+                source,
+            })?;
+            jac.valid = true;
+            fresh = true;
+        } else if !jac.valid || params.jacobian != JacobianMethod::Broyden {
+            let mut eval_here = |e: [f64; 2], stats: &mut Stats| eval(film, e, stats);
+            jac.m = fd_jacobian(&mut eval_here, eps, resp.film_force, w, fd_h, stats)?;
+            last_solved = [f64::NAN; 2];
             fd_h = params.fd_step;
             jac.valid = true;
             fresh = true;
@@ -1059,7 +1088,8 @@ fn newton<F: FilmModel + ?Sized>(
         let mut accepted = false;
         for _ in 0..8 {
             let trial = [eps[0] + lambda * delta[0], eps[1] + lambda * delta[1]];
-            let (tresp, tst, tr) = eval(trial, stats)?;
+            let (tresp, tst, tr) = eval(film, trial, stats)?;
+            last_solved = trial;
             let tres = norm(tr) / scale;
             if tres < res {
                 let s = [trial[0] - eps[0], trial[1] - eps[1]];
@@ -1082,7 +1112,7 @@ fn newton<F: FilmModel + ?Sized>(
             lambda *= 0.5;
         }
         if !accepted {
-            if fresh && !wide_tried {
+            if fresh && !wide_tried && params.jacobian != JacobianMethod::Exact {
                 wide_tried = true;
                 fd_h = (100.0 * params.fd_step).max(1e-3);
                 jac.valid = false;

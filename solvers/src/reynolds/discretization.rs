@@ -458,3 +458,59 @@ pub(crate) fn mass_residual(
     }
     norm.sqrt()
 }
+
+/// ∂R_k/∂ε_c at fixed ψ for every unknown node (0 on Dirichlet rows): the derivative of
+/// [`mass_residual`] along a change of the film thickness `dh_node` / `dh_face` (∂h/∂ε_c at the
+/// nodes and east θ-faces; for ε_x: −c cos θ, for ε_y: −c sin θ). h enters the Couette flux
+/// (U/2) h_f φ_up, the pressure-flux coefficients k = β h³/(12μ) (dk = 3 k dh/h, with the
+/// z-face thickness the mean of its two nodes) and the time term V h φ/Δt; `flux_weight` is ½
+/// for Crank–Nicolson, else 1, and `dt` the (effective) step of the time term, None when
+/// steady. `content` is ψ, `pressure` g ψ of the converged film.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn residual_eccentricity_derivative(
+    lv: &Level,
+    dh_node: &[f64],
+    dh_face: &[f64],
+    content: &[f64],
+    pressure: &[f64],
+    flux_weight: f64,
+    dt: Option<f64>,
+    out: &mut [f64],
+) {
+    let grid = lv.grid;
+    let (nt, nz) = (grid.n_theta, grid.n_z);
+    let dx = grid.radius * grid.d_theta;
+    out.iter_mut().for_each(|o| *o = 0.0);
+    for i in 0..nt {
+        let ie = if i + 1 == nt { 0 } else { i + 1 };
+        for j in 0..nz {
+            let k = i * nz + j;
+            let ke = ie * nz + j;
+            let up = if lv.speed >= 0.0 { k } else { ke };
+            let dk = 3.0 * lv.k_theta[k] / lv.h_face[k] * dh_face[k];
+            let df = grid.row_width(j)
+                * (0.5 * lv.speed * dh_face[k] * (1.0 + content[up])
+                    - dk / dx * (pressure[ke] - pressure[k]));
+            out[k] += flux_weight * df;
+            out[ke] -= flux_weight * df;
+            if j + 1 < nz {
+                let hz = 0.5 * (lv.h[k] + lv.h[k + 1]);
+                let dkz = 3.0 * lv.k_z[k] / hz * 0.5 * (dh_node[k] + dh_node[k + 1]);
+                let df = -dx * dkz / grid.z_gap(j) * (pressure[k + 1] - pressure[k]);
+                out[k] += flux_weight * df;
+                out[k + 1] -= flux_weight * df;
+            }
+        }
+    }
+    if let Some(dt) = dt {
+        let v = grid.radius * grid.d_theta * grid.dz;
+        for k in 0..grid.len() {
+            out[k] += v / dt * dh_node[k] * (1.0 + content[k]);
+        }
+    }
+    for k in 0..grid.len() {
+        if grid.kind[k] != NodeKind::Unknown {
+            out[k] = 0.0;
+        }
+    }
+}

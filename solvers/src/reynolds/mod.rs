@@ -427,6 +427,21 @@ pub struct ReynoldsSolver {
     k_theta: Vec<f64>,
     k_z: Vec<f64>,
     dirichlet: Vec<f64>,
+    /// The converged film of the last solve, for [`film_force_jacobian`](Self::film_force_jacobian).
+    last: Option<Linearization>,
+}
+
+/// What the film-force Jacobian needs of the last converged solve.
+#[derive(Debug, Clone)]
+struct Linearization {
+    eccentricity_ratio: [f64; 2],
+    conditions: OperatingConditions,
+    psi: Vec<f64>,
+    g: Vec<f64>,
+    /// Effective step of the time term (None: steady).
+    dt: Option<f64>,
+    /// ½ for Crank–Nicolson, else 1.
+    flux_weight: f64,
 }
 
 impl ReynoldsSolver {
@@ -485,6 +500,7 @@ impl ReynoldsSolver {
             k_theta: vec![0.0; n],
             k_z: vec![0.0; n],
             dirichlet: vec![0.0; n],
+            last: None,
         })
     }
 
@@ -664,6 +680,120 @@ impl ReynoldsSolver {
             )),
         };
         Ok((sol, new_state))
+    }
+
+    /// The exact Jacobian ∂F/∂ε of the film force of the last solve (a step or a steady film),
+    /// N per unit eccentricity ratio, `[[∂F_x/∂ε_x, ∂F_x/∂ε_y], [∂F_y/∂ε_x, ∂F_y/∂ε_y]]`, from
+    /// the converged linearization (design.md §4):
+    ///
+    /// ```text
+    ///   R(ψ, ε) = 0  ⇒  A(g) ∂ψ/∂ε_c = −∂R/∂ε_c |_ψ            (two right-hand sides, c = x, y)
+    ///   ∂F/∂ε_c = −Σ_k w_k β g_k (∂ψ_k/∂ε_c) (cos θ_k, sin θ_k)
+    /// ```
+    ///
+    /// A(g) is the frozen-switch matrix of the converged switch g (the generalized Jacobian of
+    /// the piecewise-linear residual; exact wherever no node sits on ψ = 0), ∂R/∂ε at fixed ψ
+    /// from ∂h/∂ε_x = −c cos θ, ∂h/∂ε_y = −c sin θ in the Couette flux, the pressure-flux
+    /// coefficients and the time term ([`discretization`]'s
+    /// `residual_eccentricity_derivative`); the old level is fixed. Each right-hand side is
+    /// solved by the film's own linear solver to `tolerance`. Across a switch the discrete force
+    /// is continuous but only piecewise smooth: this is the derivative of the piece the answer
+    /// lies on — what finite differences across a switching film cannot give.
+    pub fn film_force_jacobian(&mut self) -> Result<[[f64; 2]; 2], ReynoldsError> {
+        let lin = self.last.clone().ok_or(ReynoldsError::Unsupported {
+            what: "film_force_jacobian: no film has been solved yet",
+        })?;
+        let prep = self.prepare(lin.eccentricity_ratio, &lin.conditions, None)?;
+        let p = &self.params;
+        let grid = &self.grid;
+        let n = grid.len();
+        let nz = grid.n_z;
+        let level = Level {
+            grid,
+            h: &prep.h.node,
+            h_face: &prep.h.face_theta,
+            k_theta: &self.k_theta,
+            k_z: &self.k_z,
+            speed: prep.speed,
+        };
+        let zeros = vec![0.0; n];
+        let time = match lin.dt {
+            None => TimeTerm::Steady,
+            Some(dt) => TimeTerm::Step {
+                dt,
+                old_content: &zeros,
+                old_outflow: (lin.flux_weight < 1.0).then_some(&zeros[..]),
+            },
+        };
+        let pressure: Vec<f64> = lin.psi.iter().zip(&lin.g).map(|(x, g)| x * g).collect();
+        let mut jacobian = [[0.0; 2]; 2];
+        let mut dh_node = vec![0.0; n];
+        let mut dh_face = vec![0.0; n];
+        let mut d_res = vec![0.0; n];
+        for c in 0..2 {
+            for i in 0..grid.n_theta {
+                let th = grid.theta(i);
+                let thf = th + 0.5 * grid.d_theta;
+                let (dn, df) = if c == 0 {
+                    (-p.clearance * th.cos(), -p.clearance * thf.cos())
+                } else {
+                    (-p.clearance * th.sin(), -p.clearance * thf.sin())
+                };
+                for j in 0..nz {
+                    dh_node[i * nz + j] = dn;
+                    dh_face[i * nz + j] = df;
+                }
+            }
+            discretization::residual_eccentricity_derivative(
+                &level,
+                &dh_node,
+                &dh_face,
+                &lin.psi,
+                &pressure,
+                lin.flux_weight,
+                lin.dt,
+                &mut d_res,
+            );
+            discretization::assemble(&level, &lin.g, &zeros, time, &mut self.stencil);
+            for k in 0..n {
+                self.stencil.rhs[k] = -d_res[k];
+            }
+            let mut x = vec![0.0; n];
+            match p.linear_solver {
+                LinearSolver::AdiKrylov => {
+                    adi::solve_krylov(
+                        grid,
+                        &self.stencil,
+                        &mut x,
+                        p.tolerance,
+                        None,
+                        p.max_linear_iterations,
+                        &mut self.ws,
+                    )?;
+                }
+                LinearSolver::SparseLu => oracle::solve_lu(grid, &self.stencil, &mut x)?,
+            }
+            for i in 0..grid.n_theta {
+                let th = grid.theta(i);
+                for j in 0..nz {
+                    let k = i * nz + j;
+                    if grid.kind[k] == NodeKind::Unknown {
+                        let dp = p.bulk_modulus * lin.g[k] * x[k];
+                        jacobian[0][c] -= grid.area_weight[k] * dp * th.cos();
+                        jacobian[1][c] -= grid.area_weight[k] * dp * th.sin();
+                    }
+                }
+            }
+        }
+        if jacobian.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(ReynoldsError::NonFinite {
+                what: "film-force Jacobian",
+                theta_index: 0,
+                z_index: 0,
+                iteration: 0,
+            });
+        }
+        Ok(jacobian)
     }
 
     /// The steady film (no squeeze) at ε, from a cold start.
@@ -1022,6 +1152,23 @@ impl ReynoldsSolver {
         let mut flux_theta = vec![0.0; n];
         let mut flux_z = vec![0.0; n];
         discretization::face_fluxes(&level, &g, &psi, &mut flux_theta, &mut flux_z);
+        self.last = Some(Linearization {
+            eccentricity_ratio: eps,
+            conditions: conditions.clone(),
+            psi: psi.clone(),
+            g: g.clone(),
+            dt: match time {
+                TimeTerm::Steady => None,
+                TimeTerm::Step { dt, .. } => Some(dt),
+            },
+            flux_weight: match time {
+                TimeTerm::Step {
+                    old_outflow: Some(_),
+                    ..
+                } => 0.5,
+                _ => 1.0,
+            },
+        });
         Ok(Core {
             grid: grid.clone(),
             h: h.node,

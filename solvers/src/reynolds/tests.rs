@@ -520,3 +520,107 @@ fn step_halving_gives_each_schemes_order_on_the_reynolds_film() {
         );
     }
 }
+
+/// The exact film-force Jacobian against central differences of the force, on a steady film
+/// and on a cavitating time step of each scheme. Central differences with h = 1e-6 are
+/// trusted only where they agree with h = 3e-7 to 1e-4 (no switch crossed, O(h²) error
+/// negligible); there the exact Jacobian must agree to 1e-4 of its norm (the difference
+/// quotients' round-off: solve tolerance 1e-10 over h, ~1e-4 relative).
+#[test]
+fn film_force_jacobian_matches_differences_on_smooth_pieces() {
+    let jac_norm = |m: [[f64; 2]; 2]| m.iter().flatten().map(|v| v * v).sum::<f64>().sqrt();
+    let diff = |a: [[f64; 2]; 2], b: [[f64; 2]; 2]| {
+        jac_norm([
+            [a[0][0] - b[0][0], a[0][1] - b[0][1]],
+            [a[1][0] - b[1][0], a[1][1] - b[1][1]],
+        ])
+    };
+    let mut compared = 0;
+    for (case, scheme) in [
+        TimeScheme::BackwardEuler,
+        TimeScheme::Bdf2,
+        TimeScheme::CrankNicolson,
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut p = grooved(LinearSolver::AdiKrylov);
+        p.time_scheme = scheme;
+        p.grid = GridParams {
+            n_theta: 48,
+            n_z: 11,
+        };
+        let mut s = ReynoldsSolver::new(p).unwrap();
+        let c = conditions(2e5);
+        // Two steps of history, so BDF2 and CN use their own formulas.
+        let mut state = s.initial_state([0.5, 0.2]);
+        for e in [[0.51, 0.21], [0.52, 0.22]] {
+            let input = StepInput {
+                eccentricity_ratio: e,
+                dt: 1e-4,
+                conditions: c.clone(),
+            };
+            state = s.solve_step(&state, &input).unwrap().1;
+        }
+        let step = |s: &mut ReynoldsSolver, e: [f64; 2]| {
+            let input = StepInput {
+                eccentricity_ratio: e,
+                dt: 1e-4,
+                conditions: c.clone(),
+            };
+            s.solve_step(&state, &input).unwrap().0.film_force
+        };
+        let e0 = [0.53 + 0.01 * case as f64, 0.23];
+        let sol = step(&mut s, e0);
+        let exact = s.film_force_jacobian().unwrap();
+        let central = |s: &mut ReynoldsSolver, h: f64| {
+            let mut m = [[0.0; 2]; 2];
+            for k in 0..2 {
+                let (mut ep, mut em) = (e0, e0);
+                ep[k] += h;
+                em[k] -= h;
+                let (fp, fm) = (step(s, ep), step(s, em));
+                for i in 0..2 {
+                    m[i][k] = (fp[i] - fm[i]) / (2.0 * h);
+                }
+            }
+            m
+        };
+        let (d1, d2) = (central(&mut s, 1e-6), central(&mut s, 3e-7));
+        let scale = jac_norm(exact);
+        assert!(scale > 0.0 && sol[0].hypot(sol[1]) > 0.0);
+        if diff(d1, d2) <= 1e-4 * scale {
+            compared += 1;
+            assert!(
+                diff(exact, d1) <= 1e-4 * scale,
+                "{scheme:?}: exact {exact:?} vs differences {d1:?}"
+            );
+        }
+    }
+    // The steady film (Newton matrix without the pseudo-time shift).
+    let mut s = ReynoldsSolver::new(grooved(LinearSolver::SparseLu)).unwrap();
+    let c = conditions(2e5);
+    let e0 = [0.4, -0.3];
+    s.solve_steady(e0, &c).unwrap();
+    let exact = s.film_force_jacobian().unwrap();
+    let mut d = [[0.0; 2]; 2];
+    let h = 1e-6;
+    for k in 0..2 {
+        let (mut ep, mut em) = (e0, e0);
+        ep[k] += h;
+        em[k] -= h;
+        let fp = s.solve_steady(ep, &c).unwrap().film_force;
+        let fm = s.solve_steady(em, &c).unwrap().film_force;
+        for i in 0..2 {
+            d[i][k] = (fp[i] - fm[i]) / (2.0 * h);
+        }
+    }
+    assert!(
+        diff(exact, d) <= 1e-4 * jac_norm(exact),
+        "steady: exact {exact:?} vs differences {d:?}"
+    );
+    assert!(
+        compared >= 2,
+        "only {compared} of 3 time steps on a smooth piece"
+    );
+}
