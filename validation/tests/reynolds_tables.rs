@@ -16,10 +16,13 @@ use jbearing_validation::read_reference_csv;
 
 const R: f64 = 0.05;
 const C: f64 = 50e-6;
-// Low μω keeps film pressures small (≤ 1 MPa), so the physical bulk modulus does not add a
-// compressibility effect that the incompressible tables do not have.
+// Low μω keeps film pressures small against the physical bulk modulus, so that compressibility
+// (and the upwinded Couette flux's artificial diffusion, 3μUΔx/(βh²) of the pressure flux —
+// both O(p/β)) adds nothing the incompressible tables do not have. Measured at ε = 0.99, B/d 1,
+// 120 × 31: So +2.42 % against the table with μω = 0.04 Pa (p_max ≈ 30 MPa), +1.40 % with
+// β × 100, the incompressible limit; μω = 0.004 Pa brings the film to that limit.
 const MU: f64 = 0.002;
-const OMEGA: f64 = 20.0;
+const OMEGA: f64 = 2.0;
 
 fn solver(l_over_d: f64, grid: GridParams) -> ReynoldsSolver {
     let mut p = ReynoldsParams::plain(R, l_over_d * 2.0 * R, C, MU);
@@ -165,4 +168,45 @@ fn default_grid_is_converged() {
         assert!(rel(d.0, f.0) < rel(c.0, f.0));
         assert!(rel(d.2, f.2) < rel(c.2, f.2));
     }
+}
+
+/// Butenschön's rows at ε = 0.95 … 0.99 (B/d = 1, 1/2, 1/3) at the default grid, against the
+/// tolerances the product promises up to ε = 0.99 (issue 11 item 6): So 2 %, β 0.5°, Q 2 %.
+/// These were out of reach of the first-generation film (node-averaged h in the Couette flux:
+/// +2.2 … +10 % in So at ε 0.95–0.99).
+#[test]
+fn butenschoen_rotation_table_high_eccentricity() {
+    let rows = read_reference_csv("butenschoen_rotation.csv");
+    let mut worst = (0.0f64, 0.0f64, 0.0f64);
+    for bd in [1.0, 0.5, 1.0 / 3.0] {
+        let mut s = solver(bd, GridParams::default());
+        for row in rows
+            .iter()
+            .filter(|r| (r[0] - bd).abs() < 1e-3 && r[1] > 0.9 + 1e-9)
+        {
+            let (eps, so_ref, beta_ref, q_ref) = (row[1], row[2], row[3], row[4]);
+            let sol = solve(&mut s, eps);
+            let (so, beta, q) = butenschoen_numbers(&sol, bd);
+            let (e_so, e_b, e_q) = ((so - so_ref) / so_ref, beta - beta_ref, (q - q_ref) / q_ref);
+            eprintln!(
+                "Butenschön B/d={bd:.3} ε={eps}: So {so:.4} ({so_ref}) {:+.2} %, β {beta:.2}° ({beta_ref}) {e_b:+.2}°, Q {q:.4} ({q_ref}) {:+.2} %",
+                100.0 * e_so,
+                100.0 * e_q,
+            );
+            worst = (
+                worst.0.max(e_so.abs()),
+                worst.1.max(e_b.abs()),
+                worst.2.max(e_q.abs()),
+            );
+        }
+    }
+    eprintln!(
+        "Butenschön ε > 0.9 worst: So {:.2} %, β {:.2}°, Q {:.2} %",
+        100.0 * worst.0,
+        worst.1,
+        100.0 * worst.2
+    );
+    assert!(worst.0 < 0.02, "So {:.2} %", 100.0 * worst.0);
+    assert!(worst.1 < 0.5, "β {:.2}°", worst.1);
+    assert!(worst.2 < 0.02, "Q {:.2} %", 100.0 * worst.2);
 }
