@@ -15,19 +15,22 @@
 //! the journal centre position per time step) solve it by Newton's method; so do we:
 //!
 //! ```text
-//!   J Δε = −r(ε_k),   J = ∂F_film/∂ε  (2×2: forward differences, or Broyden updates
-//!                                       carried across steps and refreshed by differences
-//!                                       when they stop reducing |r|)
+//!   J Δε = −r(ε_k),   J = ∂F_film/∂ε  (2×2: exact, from the film's converged linearization —
+//!                                       FilmModel::force_jacobian; forward differences for a
+//!                                       film without one; Broyden updates as an option)
 //!   ε_{k+1} = ε_k + λ Δε,  λ ≤ 1 limits |λΔε| ≤ max_newton_step and keeps |ε| < 1 by never
 //!                          closing more than half of the remaining gap 1 − |ε_k| in one update
 //!   converged when |r| / max(|W|, W_ref) ≤ tol                     (default tol = 1e-4)
 //! ```
 //!
-//! The discretised JFO film force is only piecewise smooth in ε: it jumps when a node switches
-//! between full and cavitated film (by up to ~1 % of the load on coarse grids). A step whose
-//! Newton stalls on such a jump (no descent along a fresh difference Jacobian) is accepted at its
-//! best point if |r|/max(|W|, W_ref) ≤ `accept_tolerance` (default 1e-2) and counted in
-//! [`InverseInfo::stalled_steps`]; above that it is an error.
+//! The exact Jacobian is taken at the first iterate of every step and kept for the step's
+//! further iterates while each reduces |r| at least 4× (chord steps), refreshed otherwise
+//! (design.md §4: finite differences across a switching film are meaningless). The discrete
+//! JFO film of the second generation is continuous in ε (`crate::reynolds`, module docs), so
+//! Newton converges to the tolerance on every step of the validation and compressor cases;
+//! a step that still cannot (iteration limit, or no descent on a fresh Jacobian) is accepted at
+//! its best point if |r|/max(|W|, W_ref) ≤ `accept_tolerance` (default 1e-2), counted in
+//! [`InverseInfo::stalled_steps`] and reported; above that it is an error.
 //!
 //! # Time marching
 //!
@@ -52,7 +55,7 @@
 //! [`FilmModel`] is the one thing the inverse solver needs from a film: step from a state at t^n
 //! to a trial ε^{n+1} and return the film force and the outputs. Two implementations:
 //! - [`ShortBearingFilm`]: Ocvirk's short bearing with Gumbel's half film and a moving journal
-//!   (seed 000 eqs. 18–22; seed 004), analytic, with backward-Euler or Crank–Nicolson time
+//!   (seed 000 eqs. 18–22; seed 004), analytic, with the crate's [`TimeScheme`] (BDF2 default)
 //!   discretisation of the journal velocity.
 //! - [`ReynoldsFilm`]: the universal (mass-conserving) Reynolds solver [`crate::reynolds`].
 

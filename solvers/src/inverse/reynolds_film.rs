@@ -1,10 +1,13 @@
 //! The universal Reynolds film (mass-conserving, [`crate::reynolds`]) as a [`FilmModel`].
 //!
 //! A thin adapter: one film step is one [`ReynoldsSolver::solve_step`] from the state at t^n to
-//! the trial ε^{n+1}; the state is the solver's [`FilmState`] (ε, φ and g fields, and the net
-//! outflow Crank–Nicolson needs). The time discretisation is the solver's
-//! ([`crate::reynolds::TimeScheme`]; backward Euler by default, Crank–Nicolson where a whirling
-//! film must not gain artificial load capacity — see [`super::ShortBearingFilm`]'s docs).
+//! the trial ε^{n+1}; the state is the solver's [`FilmState`] (ε, φ and g fields, the net
+//! outflow Crank–Nicolson needs and the level before that BDF2 needs). The time discretisation
+//! is the solver's ([`crate::reynolds::TimeScheme`]: BDF2 by default — second order and
+//! L-stable; backward Euler gives a whirling film artificial load capacity, see
+//! [`super::ShortBearingFilm`]'s docs, and Crank–Nicolson rings). The exact film-force Jacobian
+//! of the last step ([`FilmModel::force_jacobian`]) is
+//! [`ReynoldsSolver::film_force_jacobian`].
 //!
 //! Periodicity of the film field: [`FilmModel::state_change`] is max |Δφ| over the grid
 //! (φ = density ratio in full film, film fraction in cavitated film).

@@ -19,7 +19,9 @@ use thiserror::Error;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum JacobianMethod {
     /// The film model's exact Jacobian from its converged linearization
-    /// ([`FilmModel::force_jacobian`]) at every Newton iteration; forward differences for a
+    /// ([`FilmModel::force_jacobian`]) at the first Newton iterate of every step, reused for
+    /// the step's further iterates while each reduces |r| at least 4× (a chord step), fresh
+    /// otherwise and whenever a step along it finds no descent; forward differences for a
     /// model that has none (counted in [`InverseInfo::jacobian_evaluations`] either way).
     #[default]
     Exact,
@@ -990,6 +992,10 @@ fn newton<F: FilmModel + ?Sized>(
         })
     };
 
+    if params.jacobian == JacobianMethod::Exact {
+        // A fresh exact Jacobian at the first iterate of every step.
+        jac.valid = false;
+    }
     let mut eps = guess;
     let (mut resp, mut st, mut r) = eval(film, eps, stats)?;
     // Where the film model was last solved (its exact Jacobian is that point's).
@@ -1024,7 +1030,7 @@ fn newton<F: FilmModel + ?Sized>(
         }
         iterations += 1;
         let exact = match params.jacobian {
-            JacobianMethod::Exact => {
+            JacobianMethod::Exact if !jac.valid => {
                 if last_solved != eps {
                     eval(film, eps, stats)?;
                     last_solved = eps;
@@ -1044,7 +1050,7 @@ fn newton<F: FilmModel + ?Sized>(
             })?;
             jac.valid = true;
             fresh = true;
-        } else if !jac.valid || params.jacobian != JacobianMethod::Broyden {
+        } else if !jac.valid || params.jacobian == JacobianMethod::FiniteDifference {
             let mut eval_here = |e: [f64; 2], stats: &mut Stats| eval(film, e, stats);
             jac.m = fd_jacobian(&mut eval_here, eps, resp.film_force, w, fd_h, stats)?;
             last_solved = [f64::NAN; 2];
@@ -1093,8 +1099,14 @@ fn newton<F: FilmModel + ?Sized>(
             let tres = norm(tr) / scale;
             if tres < res {
                 let s = [trial[0] - eps[0], trial[1] - eps[1]];
-                if params.jacobian == JacobianMethod::Broyden {
-                    broyden(&mut jac.m, s, [tr[0] - r[0], tr[1] - r[1]]);
+                match params.jacobian {
+                    JacobianMethod::Broyden => {
+                        broyden(&mut jac.m, s, [tr[0] - r[0], tr[1] - r[1]]);
+                    }
+                    // Chord steps on the step's exact Jacobian while they contract well;
+                    // a fresh one when the residual falls by less than 4×.
+                    JacobianMethod::Exact if tres > 0.25 * res => jac.valid = false,
+                    _ => {}
                 }
                 eps = trial;
                 resp = tresp;

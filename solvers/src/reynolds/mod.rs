@@ -429,6 +429,8 @@ pub struct ReynoldsSolver {
     dirichlet: Vec<f64>,
     /// The converged film of the last solve, for [`film_force_jacobian`](Self::film_force_jacobian).
     last: Option<Linearization>,
+    /// ∂ψ/∂ε_x and ∂ψ/∂ε_y of the last Jacobian (the start of the next one's solves).
+    sensitivity: [Vec<f64>; 2],
 }
 
 /// What the film-force Jacobian needs of the last converged solve.
@@ -501,6 +503,7 @@ impl ReynoldsSolver {
             k_z: vec![0.0; n],
             dirichlet: vec![0.0; n],
             last: None,
+            sensitivity: [Vec::new(), Vec::new()],
         })
     }
 
@@ -694,9 +697,11 @@ impl ReynoldsSolver {
     /// A(g) is the frozen-switch matrix of the converged switch g (the generalized Jacobian of
     /// the piecewise-linear residual; exact wherever no node sits on ψ = 0), ∂R/∂ε at fixed ψ
     /// from ∂h/∂ε_x = −c cos θ, ∂h/∂ε_y = −c sin θ in the Couette flux, the pressure-flux
-    /// coefficients and the time term ([`discretization`]'s
-    /// `residual_eccentricity_derivative`); the old level is fixed. Each right-hand side is
-    /// solved by the film's own linear solver to `tolerance`. Across a switch the discrete force
+    /// coefficients and the time term (`discretization::residual_eccentricity_derivative`); the
+    /// old level is fixed. Each right-hand side is
+    /// solved by the film's own linear solver to 1e-7 of its largest entry (or `tolerance`, if
+    /// looser), started from the previous call's ∂ψ/∂ε (the fields move little from one call to
+    /// the next): Newton on ε needs the Jacobian to a few digits, not to round-off. Across a switch the discrete force
     /// is continuous but only piecewise smooth: this is the derivative of the piece the answer
     /// lies on — what finite differences across a switching film cannot give.
     pub fn film_force_jacobian(&mut self) -> Result<[[f64; 2]; 2], ReynoldsError> {
@@ -758,14 +763,15 @@ impl ReynoldsSolver {
             for k in 0..n {
                 self.stencil.rhs[k] = -d_res[k];
             }
-            let mut x = vec![0.0; n];
+            let mut x = std::mem::take(&mut self.sensitivity[c]);
+            x.resize(n, 0.0);
             match p.linear_solver {
                 LinearSolver::AdiKrylov => {
                     adi::solve_krylov(
                         grid,
                         &self.stencil,
                         &mut x,
-                        p.tolerance,
+                        JACOBIAN_TOLERANCE.max(p.tolerance),
                         None,
                         p.max_linear_iterations,
                         &mut self.ws,
@@ -784,6 +790,7 @@ impl ReynoldsSolver {
                     }
                 }
             }
+            self.sensitivity[c] = x;
         }
         if jacobian.iter().flatten().any(|v| !v.is_finite()) {
             return Err(ReynoldsError::NonFinite {
@@ -1186,6 +1193,9 @@ impl ReynoldsSolver {
 /// Changes of state of one node after which a solve goes over to single flips (a cycle of the
 /// simultaneous update); a change of strategy, not a lock.
 const CYCLE_FLIPS: u32 = 8;
+
+/// Relative tolerance of the film-force Jacobian's two linear solves.
+const JACOBIAN_TOLERANCE: f64 = 1e-7;
 
 /// Armijo constant t of the backtracking line search and the shortest step tried.
 const ARMIJO: f64 = 1e-4;
