@@ -19,15 +19,17 @@
 //! - step scaling at 120 × 31: 2°, 1°, 0.5°.
 //!
 //! Usage: `cargo run --release -p jbearing-validation --bin inverse_timing [-- [--quick |
-//! --default] [--repeat N]]`
+//! --default] [--repeat N] [--jacobian exact|broyden|differences]]`
 //! (`--quick`: the 60 × 15 rows only, to check that it runs; `--default`: the 120 × 31, 1° row
 //! only, for before/after comparisons of a change; `--repeat N`: run every row N times and
-//! report the run with the median time, for a machine shared with other jobs).
+//! report the run with the median time, for a machine shared with other jobs; `--jacobian`:
+//! the inverse Newton's Jacobian, default exact). "ms per film step" includes the exact
+//! Jacobian's two linear solves; "Krylov iterations per film step" counts the film solves only.
 
 use anyhow::{Context, Result};
 use jbearing_solvers::inverse::{
     FilmConditions, FilmModel, FilmModelError, FilmResponse, InverseParams, InverseSolution,
-    NoObserver, ReynoldsFilm, solve_inverse,
+    JacobianMethod, NoObserver, ReynoldsFilm, solve_inverse,
 };
 use jbearing_solvers::load::{FnLoad, OperatingHistory};
 use jbearing_solvers::reynolds::{FilmState, TimeScheme};
@@ -102,7 +104,7 @@ struct Row {
     solution: InverseSolution,
 }
 
-fn run(n_theta: usize, n_z: usize, step_deg: f64) -> Result<Row> {
+fn run(n_theta: usize, n_z: usize, step_deg: f64, jacobian: JacobianMethod) -> Result<Row> {
     let load = OperatingHistory {
         load: FnLoad {
             period: TAU / OMEGA,
@@ -120,6 +122,7 @@ fn run(n_theta: usize, n_z: usize, step_deg: f64) -> Result<Row> {
     let params = InverseParams {
         step_deg,
         max_cycles: 1,
+        jacobian,
         ..Default::default()
     };
     let t0 = thread_cpu_seconds();
@@ -153,11 +156,12 @@ fn main() -> Result<()> {
     while let Some(a) = rest.next() {
         match a.as_str() {
             "--quick" | "--default" => {}
-            "--repeat" => {
+            "--repeat" | "--jacobian" => {
                 rest.next();
             }
             other => anyhow::bail!(
-                "unknown argument {other:?} (expected --quick, --default, --repeat N)"
+                "unknown argument {other:?} (expected --quick, --default, --repeat N, \
+                 --jacobian exact|broyden|differences)"
             ),
         }
     }
@@ -170,6 +174,15 @@ fn main() -> Result<()> {
             .filter(|&n: &usize| n >= 1)
             .context("--repeat needs a positive count")?,
         None => 1,
+    };
+    let jacobian = match args.iter().position(|a| a == "--jacobian") {
+        Some(i) => match args.get(i + 1).map(String::as_str) {
+            Some("exact") => JacobianMethod::Exact,
+            Some("broyden") => JacobianMethod::Broyden,
+            Some("differences") => JacobianMethod::FiniteDifference,
+            other => anyhow::bail!("--jacobian {other:?}: expected exact, broyden or differences"),
+        },
+        None => JacobianMethod::default(),
     };
     let plan: Vec<(usize, usize, f64)> = if quick {
         vec![(60, 15, 2.0), (60, 15, 1.0)]
@@ -185,9 +198,10 @@ fn main() -> Result<()> {
         ]
     };
     println!(
-        "Machine: {}. Measured: {}. Thread CPU time, one core, release build{}.\n",
+        "Machine: {}. Measured: {}. Thread CPU time, one core, release build; {:?} Jacobian{}.\n",
         machine(),
         jiff::Timestamp::now().strftime("%Y-%m-%d %H:%M UTC"),
+        jacobian,
         if repeat > 1 {
             format!("; each row the median of {repeat} runs")
         } else {
@@ -200,7 +214,7 @@ fn main() -> Result<()> {
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (nt, nz, step) in plan {
         let mut runs = (0..repeat)
-            .map(|_| run(nt, nz, step))
+            .map(|_| run(nt, nz, step, jacobian))
             .collect::<Result<Vec<_>>>()?;
         runs.sort_by(|a, b| a.total.total_cmp(&b.total));
         let r = runs.swap_remove(repeat / 2);
