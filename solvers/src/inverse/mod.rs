@@ -23,8 +23,8 @@
 //!   converged when |r| / max(|W|, W_ref) ≤ tol                     (default tol = 1e-4)
 //! ```
 //!
-//! The exact Jacobian is taken at the first iterate of every step and kept for the step's
-//! further iterates while each reduces |r| at least 4× (chord steps), refreshed otherwise
+//! The exact Jacobian is kept across iterates and time steps while each iterate along it
+//! reduces |r| at least 4× (chord steps) and taken afresh at the current iterate otherwise
 //! (design.md §4: finite differences across a switching film are meaningless). The discrete
 //! JFO film of the second generation is continuous in ε (`crate::reynolds`, module docs), so
 //! Newton converges to the tolerance on every step of the validation and compressor cases;

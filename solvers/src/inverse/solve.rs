@@ -19,10 +19,10 @@ use thiserror::Error;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum JacobianMethod {
     /// The film model's exact Jacobian from its converged linearization
-    /// ([`FilmModel::force_jacobian`]) at the first Newton iterate of every step, reused for
-    /// the step's further iterates while each reduces |r| at least 4× (a chord step), fresh
-    /// otherwise and whenever a step along it finds no descent; forward differences for a
-    /// model that has none (counted in [`InverseInfo::jacobian_evaluations`] either way).
+    /// ([`FilmModel::force_jacobian`]), kept across iterates and steps while each Newton
+    /// iterate along it reduces |r| at least 4× (chord steps), taken afresh at the current
+    /// iterate otherwise and whenever a step along it finds no descent; forward differences for
+    /// a model that has none (counted in [`InverseInfo::jacobian_evaluations`] either way).
     #[default]
     Exact,
     /// Forward differences at every Newton iteration (2 extra film steps per iteration).
@@ -992,10 +992,6 @@ fn newton<F: FilmModel + ?Sized>(
         })
     };
 
-    if params.jacobian == JacobianMethod::Exact {
-        // A fresh exact Jacobian at the first iterate of every step.
-        jac.valid = false;
-    }
     let mut eps = guess;
     let (mut resp, mut st, mut r) = eval(film, eps, stats)?;
     // Where the film model was last solved (its exact Jacobian is that point's).
