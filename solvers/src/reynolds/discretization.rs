@@ -395,9 +395,10 @@ pub(crate) fn net_outflow(grid: &Grid, theta: &[f64], z: &[f64], out: &mut [f64]
 /// `content` (ψ_c, φ = 1 + ψ_c: what the Couette and time terms carry) and its pressure
 /// variable `pressure` (g ψ ≥ 0 where full: what the pressure flux sees), written out from the
 /// face fluxes of the module docs — independently of [`assemble`]. At a complementary point
-/// (content = ψ, pressure = max(ψ, 0)) it is A(H(ψ)) ψ − b, the residual of the solve; the
-/// semismooth Newton also evaluates it at points where the two variables are not yet
-/// complementary (its merit function). Dirichlet rows get 0. Returns ‖R‖₂ over the unknowns.
+/// (content = ψ, pressure = max(ψ, 0)) it is A(H(ψ)) ψ − b, the residual of the solve. The
+/// LCP oracle test probes the discrete problem through it, column by column. Dirichlet rows
+/// get 0. Returns ‖R‖₂ over the unknowns.
+#[cfg(test)]
 pub(crate) fn mass_residual(
     lv: &Level,
     content: &[f64],

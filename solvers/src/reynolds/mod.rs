@@ -44,38 +44,39 @@
 //! 2010 write the same as an LCP). R is continuous and piecewise linear, and for every switch
 //! pattern g its slope A(g) = C + P diag(g) is an M-matrix (`discretization`, module docs).
 //!
-//! Semismooth Newton (the primal–dual active-set method of Hintermüller, Ito & Kunisch 2003)
-//! on the complementarity system in (u, v):
+//! Semismooth Newton on the complementarity system in (u, v),
 //!
 //! ```text
-//!   R_mass(u, v) = C (u − v) + P u − b = 0,      min(u_k, v_k) = 0  (every unknown k)
+//!   R_mass(u, v) = C (u − v) + P u − b = 0,      min(u_k, v_k) = 0  (every unknown k),
 //! ```
 //!
-//! The min-function's generalized derivative picks u_k = 0 (cavitated) where u_k < v_k and
-//! v_k = 0 (full) otherwise; with that switch g the linearized system is exactly the
-//! frozen-switch system A(g) y = b, A(g) = C + P diag(g) (the mass balance is linear), and the
-//! full step is (u⁺, v⁺) = (g y, −(1 − g) y): a full step leaves the mass balance solved and
-//! only the complementarity of the nodes whose sign of y disagrees with g violated. A
-//! piecewise-linear problem is solved exactly once the switch pattern is right (finite
-//! termination). Each iteration
+//! is the primal–dual active-set method (Hintermüller, Ito & Kunisch 2003) and, for an LCP,
+//! block principal pivoting (Júdice & Pires 1994): the min-function's generalized derivative
+//! picks u_k = 0 (cavitated) or v_k = 0 (full) according to the switch g; with g fixed the
+//! linearized system is exactly the frozen-switch system A(g) y = b, A(g) = C + P diag(g) (the
+//! mass balance is linear), whose solution y gives the next point (u, v) = (g y, −(1 − g) y).
+//! A node is *infeasible* when the sign of y disagrees with g (a full node with y < 0, a
+//! cavitated one with y > 0). A piecewise-linear problem is solved exactly once no node is
+//! infeasible (finite termination). Each iteration
 //!
-//! 1. solves A(g) y = b by the iterative solver of `adi`, started from the current ψ = u − v:
-//!    loosely (10⁴ × `tolerance`, at most 1e-6) while the switch still changes, to `tolerance`
-//!    once it does not (inexact Newton: an early step whose switch pattern is wrong needs no
-//!    accurate solve);
-//! 2. backtracks from the full step on the merit Θ(u, v) = ‖R_mass(u, v)‖₂² +
-//!    ‖w ∘ min(u, v)‖₂² (w_k: the cell's Couette outflow plus its time term, so that a unit
-//!    error in ψ_k weighs like the flux it carries): Armijo, Θ(λ) ≤ (1 − 2·10⁻⁴ λ) Θ(0),
-//!    λ = 1, ½, … ¹⁄₆₄; if no λ decreases Θ the full step is taken (the undamped active-set
-//!    iteration) and counted. The merit's mass residual is written out from the face fluxes
-//!    (`discretization::mass_residual`), independently of the assembled matrix. (Θ in the
-//!    single variable ψ would be useless: a cavitated node whose frozen solve gives ψ > 0 would
-//!    be read as a pressure β ψ of hundreds of MPa, while in (u, v) it is an O(1) violation of
-//!    complementarity that the next step removes.)
+//! 1. solves A(g) y = b by the iterative solver of `adi`, started from the last y: loosely
+//!    (10⁴ × `tolerance`, at most 1e-6) while nodes are infeasible, to `tolerance` once none is
+//!    (inexact Newton: a step whose switch pattern is still wrong needs no accurate solve);
+//! 2. stops if the nonlinear residual at y, with y's own switch H(y), is below the tolerance;
+//! 3. else changes the switch of every infeasible node (a block pivot: the full Newton step) —
+//!    unless `BLOCK_TRIES` block pivots in a row have not lowered the smallest number of
+//!    infeasible nodes seen, in which case it changes only the infeasible node of least index,
+//!    with a tight solve (Murty's single pivot), until the count falls below that smallest
+//!    number again. This is Júdice & Pires' safeguarded block pivoting: Murty's least-index
+//!    rule terminates finitely for every P-matrix LCP (Murty 1974), and the discrete JFO
+//!    problem of a time step is one (every switch pattern gives an M-matrix), so the iteration
+//!    cannot cycle. (A backtracking line search on a merit function in (u, v) was tried first
+//!    and dropped: the full step, which briefly raises the complementarity violation of nodes
+//!    about to switch, was cut into small steps and the solve stalled — on the compressor rod
+//!    bearing 100 iterations without convergence, against ≤ 15 with full steps.)
 //!
-//! The switch of the next step is g = [u ≥ v]. It stops when a tight solve leaves g unchanged:
-//! then max_k |R_k(ψ)| ≤ `tolerance` × the flux scale (the largest driving flux of a row,
-//! `Stencil::residual`) at a ψ with g = H(ψ), so every discrete mass balance holds to the
+//! At the returned ψ, g = H(ψ) and max_k |R_k(ψ)| ≤ `tolerance` × the flux scale (the largest
+//! driving flux of a row, `Stencil::residual`): every discrete mass balance holds to the
 //! tolerance and complementarity holds exactly on every node — p = p_cav + β max(ψ, 0) ≥ p_cav
 //! on full nodes and φ = 1 + ψ < 1 on cavitated ones (φ ≥ 0 checked). No node is ever locked,
 //! and the answer is the solution of R(ψ) = 0, not a product of the iteration path. Warm
@@ -86,10 +87,10 @@
 //! cavitated circumferential ring (its content only circulates), which early iterates can
 //! have. Steady solves therefore add a pseudo-time term to the Newton matrix only —
 //! (A(g) + D) ψ⁺ = b + D ψ, D_k = σ (|U|/2) h_k Δz_k (σ times the cell's Couette outflow),
-//! σ = 0.01 (Θ/Θ⁰)^½ (Θ: the merit above, Θ⁰ at the start; switched evolution relaxation,
-//! Mulder & van Leer 1985; pseudo-transient continuation, Kelley & Keyes 1998) — which vanishes
-//! as the residual does: the residual itself, and so the answer, are untouched. (σ₀ = 1 made
-//! the cold steady solves of the tables take 10–16 iterations, σ₀ = 0.01 takes 6–8.)
+//! σ = 0.01 · max|R(ψ)| / max|R(ψ⁰)| (switched evolution relaxation, Mulder & van Leer 1985;
+//! pseudo-transient continuation, Kelley & Keyes 1998) — which vanishes as the residual does:
+//! the residual itself, and so the answer, are untouched. (σ₀ = 1 made the cold steady solves
+//! of the tables take 10–16 iterations, σ₀ = 0.01 takes 6–8.)
 //!
 //! # Supply models (design.md §8)
 //!
@@ -968,31 +969,26 @@ impl ReynoldsSolver {
             k_z: &self.k_z,
             speed,
         };
-        // Semismooth Newton (primal–dual active set) on the complementarity problem in
-        // (u, v) = (max(ψ, 0), max(−ψ, 0)) (module docs).
+        // Semismooth Newton = primal–dual active set = block principal pivoting, with Murty's
+        // single pivots as the safeguard (module docs).
         let n_unknown = grid
             .kind
             .iter()
             .filter(|&&k| k == NodeKind::Unknown)
             .count();
-        let mut merit = Merit::new(grid, &level, time, &psi, &g);
         let mut newton = NewtonCounts::default();
-        // Start: the switch of the start state, the iterate (u, v) from its ψ.
         set_switch(grid, &psi, &mut g);
-        let (mut u, mut v) = split(&psi);
-        let mut theta = merit.value(&level, &u, &v, time);
-        let theta0 = theta.max(f64::MIN_POSITIVE);
         let loose = (p.tolerance * 1e4).min(1e-6).max(p.tolerance);
         let always_tight = p.linear_solver == LinearSolver::SparseLu;
         let mut tight = always_tight;
         let mut g_new = g.clone();
-        // How often each unknown changed state in this solve, and whether the solve has gone
-        // over to single flips (Murty's least-index rule, below).
-        let mut flips = vec![0u32; n];
         let mut last_residual = f64::NAN;
-        let (mut flipped_last, mut flipped_before_last) = (Vec::new(), Vec::new());
-        let mut single_flips = false;
+        // Júdice & Pires' counters: the fewest infeasible nodes so far, and how many more
+        // block steps may fail to lower it before a single (Murty) pivot is taken.
+        let mut fewest_infeasible = usize::MAX;
+        let mut block_tries = BLOCK_TRIES;
         let mut r = vec![0.0; n];
+        let mut first_residual = f64::NAN;
         let residual = loop {
             if newton.iterations >= p.max_newton_iterations {
                 return Err(ReynoldsError::ComplementarityNotConverged {
@@ -1004,16 +1000,18 @@ impl ReynoldsSolver {
                 });
             }
             newton.iterations += 1;
-            // Newton step: the frozen-g system A(g) y = b (exact linearization of the mass
-            // balance; the complementarity rows set u = 0 on cavitated, v = 0 on full nodes).
+            // Newton step: the frozen-g system A(g) y = b.
             discretization::assemble(&level, &g, &self.dirichlet, time, &mut self.stencil);
-            let (_, scale) = self.stencil.residual(grid, &psi, &mut r);
+            let (rmax_now, scale) = self.stencil.residual(grid, &psi, &mut r);
+            if !first_residual.is_finite() {
+                first_residual = rmax_now.max(f64::MIN_POSITIVE);
+            }
             if matches!(time, TimeTerm::Steady) {
                 // Pseudo-transient continuation (module docs): (A + D) y = b + D ψ.
-                let sigma = STEADY_SHIFT * (theta / theta0).sqrt().min(1.0);
+                let sigma = STEADY_SHIFT * (rmax_now / first_residual).min(1.0);
                 for k in 0..n {
                     if grid.kind[k] == NodeKind::Unknown {
-                        let d = sigma * merit.weight[k];
+                        let d = sigma * 0.5 * speed.abs() * level.h[k] * grid.row_width(k % nz);
                         self.stencil.p[k] += d;
                         self.stencil.rhs[k] += d * psi[k];
                     }
@@ -1044,106 +1042,42 @@ impl ReynoldsSolver {
                     iteration: newton.iterations,
                 });
             }
-            // Full step: (u⁺, v⁺) = (g y, −(1 − g) y); its switch H(y).
+            // The infeasible nodes: where the sign of y disagrees with g.
             g_new.copy_from_slice(&g);
-            let switched = set_switch(grid, &y, &mut g_new);
-            newton.switched_last = switched;
+            let infeasible = set_switch(grid, &y, &mut g_new);
+            newton.switched_last = infeasible;
             // The nonlinear residual at y with its own switch H(y): converged if small (also
             // when nodes with |ψ| at round-off level flip between equally valid states).
             discretization::assemble(&level, &g_new, &self.dirichlet, time, &mut self.stencil);
             let (rmax, _) = self.stencil.residual(grid, &y, &mut r);
             last_residual = if scale > 0.0 { rmax / scale } else { 0.0 };
+            psi = y;
             if rmax <= p.tolerance * scale || scale == 0.0 {
-                psi = y;
                 g.copy_from_slice(&g_new);
-                break if scale > 0.0 { rmax / scale } else { 0.0 };
+                break last_residual;
             }
-            if switched == 0 {
+            if infeasible == 0 {
                 // The switch is right: solve it tightly (one more Newton step, same g).
-                psi = y;
                 tight = true;
-                (u, v) = split(&psi);
-                theta = merit.value(&level, &u, &v, time);
                 continue;
-            }
-            // A cycle of the simultaneous update (possible for a P-matrix problem, with
-            // degenerate nodes at ψ ≈ 0): the same nodes change state as two steps before (a
-            // period-2 cycle, the one seen), or a node has changed state CYCLE_FLIPS times. From
-            // then on this solve changes one node per step — the least index among those whose
-            // sign disagrees with g — with tight solves: Murty's (1974) least-index
-            // complementary pivoting, which terminates finitely for every P-matrix LCP (the
-            // discrete JFO problem of a time step is one: all its switch patterns give
-            // M-matrices).
-            let flipped: Vec<usize> = (0..n).filter(|&k| g_new[k] != g[k]).collect();
-            if !single_flips
-                && (flipped == flipped_before_last
-                    || flipped.iter().any(|&k| flips[k] >= CYCLE_FLIPS))
-            {
-                single_flips = true;
-                newton.single_flip_mode = true;
-            }
-            flipped_before_last = std::mem::replace(&mut flipped_last, flipped);
-            if single_flips {
-                let k = (0..n).find(|&k| g_new[k] != g[k]).expect("switched > 0");
-                flips[k] += 1;
-                g[k] = g_new[k];
-                psi = y;
-                tight = true;
-                (u, v) = split(&psi);
-                theta = merit.value(&level, &u, &v, time);
-                continue;
-            }
-            for k in 0..n {
-                if g_new[k] != g[k] {
-                    flips[k] += 1;
-                }
             }
             tight = always_tight;
-            let (u_full, v_full) = active_split(&y, &g);
-            // Backtracking on the merit Θ = ‖R_mass(u, v)‖² + ‖w min(u, v)‖² (Armijo).
-            let mut lambda = 1.0;
-            loop {
-                let (ul, vl): (Vec<f64>, Vec<f64>) = if lambda == 1.0 {
-                    (u_full.clone(), v_full.clone())
-                } else {
-                    (
-                        u.iter()
-                            .zip(&u_full)
-                            .map(|(a, b)| a + lambda * (b - a))
-                            .collect(),
-                        v.iter()
-                            .zip(&v_full)
-                            .map(|(a, b)| a + lambda * (b - a))
-                            .collect(),
-                    )
-                };
-                let theta_l = merit.value(&level, &ul, &vl, time);
-                let sufficient = theta_l <= (1.0 - 2.0 * ARMIJO * lambda) * theta;
-                if sufficient || lambda <= LAMBDA_MIN {
-                    if !sufficient {
-                        // No decrease along the step: take the full active-set step (the
-                        // undamped primal–dual active-set iteration) and count it.
-                        newton.full_steps_without_decrease += 1;
-                        u = u_full;
-                        v = v_full;
-                        theta = merit.value(&level, &u, &v, time);
-                    } else {
-                        u = ul;
-                        v = vl;
-                        theta = theta_l;
-                    }
-                    break;
-                }
-                lambda *= 0.5;
-                newton.backtracks += 1;
+            if infeasible < fewest_infeasible {
+                fewest_infeasible = infeasible;
+                block_tries = BLOCK_TRIES;
+            } else if block_tries > 0 {
+                block_tries -= 1;
+            } else {
+                // Murty's least-index single pivot, with a tight solve.
+                let k = (0..n).find(|&k| g_new[k] != g[k]).expect("infeasible > 0");
+                g[k] = g_new[k];
+                newton.single_pivots += 1;
+                tight = true;
+                continue;
             }
-            // The iterate's switch and ψ: cavitated where u < v.
-            for k in 0..n {
-                if grid.kind[k] == NodeKind::Unknown {
-                    psi[k] = u[k] - v[k];
-                    g[k] = if u[k] >= v[k] { 1.0 } else { 0.0 };
-                }
-            }
+            // Block pivot: every infeasible node changes state (the full semismooth Newton
+            // step).
+            g.copy_from_slice(&g_new);
         };
         let iteration = newton.iterations;
         let linear_iterations = newton.linear_iterations;
@@ -1191,110 +1125,25 @@ impl ReynoldsSolver {
     }
 }
 
-/// Changes of state of one node after which a solve goes over to single flips (a cycle of the
-/// simultaneous update); a change of strategy, not a lock.
-const CYCLE_FLIPS: u32 = 8;
-
 /// σ₀ of the steady solves' pseudo-time shift (module docs).
 const STEADY_SHIFT: f64 = 0.01;
 
 /// Relative tolerance of the film-force Jacobian's two linear solves.
 const JACOBIAN_TOLERANCE: f64 = 1e-7;
 
-/// Armijo constant t of the backtracking line search and the shortest step tried.
-const ARMIJO: f64 = 1e-4;
-const LAMBDA_MIN: f64 = 1.0 / 64.0;
+/// Block pivots allowed without lowering the number of infeasible nodes before a single
+/// (Murty) pivot is taken (Júdice & Pires 1994 use 3 … 10).
+const BLOCK_TRIES: usize = 5;
 
 /// Counters of one semismooth Newton solve.
 #[derive(Debug, Clone, Copy, Default)]
 struct NewtonCounts {
     iterations: usize,
     linear_iterations: usize,
-    backtracks: usize,
-    /// Steps where no λ ≥ 1/64 decreased the merit and the full step was taken.
-    full_steps_without_decrease: usize,
-    /// Unknowns whose switch the last Newton step changed.
+    /// Infeasible unknowns (sign of the frozen solution against the switch) of the last step.
     switched_last: usize,
-    /// Whether the solve went over to single flips (Murty's rule).
-    single_flip_mode: bool,
-}
-
-/// The merit function Θ(u, v) = ‖R_mass(u, v)‖₂² + ‖w ∘ min(u, v)‖₂² of the line search:
-/// the mass residual with content u − v and pressure variable u, and the complementarity
-/// violation weighted by w_k, the cell's Couette outflow (|U|/2) h_k Δz_k plus its time term
-/// V h_k/Δt: the flux that a unit error in ψ of node k carries, so both parts are in m³/s.
-struct Merit {
-    weight: Vec<f64>,
-    mass: Vec<f64>,
-    pressure: Vec<f64>,
-    content: Vec<f64>,
-    last_mass_norm: f64,
-}
-
-impl Merit {
-    fn new(grid: &Grid, lv: &Level, time: TimeTerm, psi: &[f64], g: &[f64]) -> Self {
-        let n = grid.len();
-        let v = grid.radius * grid.d_theta * grid.dz;
-        let weight = (0..n)
-            .map(|k| {
-                let step = match time {
-                    TimeTerm::Step { dt, .. } => v * lv.h[k] / dt,
-                    TimeTerm::Steady => 0.0,
-                };
-                0.5 * lv.speed.abs() * lv.h[k] * grid.row_width(k % grid.n_z) + step
-            })
-            .collect();
-        // Dirichlet entries of the two variables are fixed: ψ_D and g_D ψ_D.
-        let content = psi.to_vec();
-        let pressure = psi.iter().zip(g).map(|(x, gk)| gk * x).collect();
-        Self {
-            weight,
-            mass: vec![0.0; n],
-            pressure,
-            content,
-            last_mass_norm: f64::NAN,
-        }
-    }
-
-    fn value(&mut self, lv: &Level, u: &[f64], v: &[f64], time: TimeTerm) -> f64 {
-        let grid = lv.grid;
-        let mut comp = 0.0;
-        for k in 0..grid.len() {
-            if grid.kind[k] == NodeKind::Unknown {
-                self.content[k] = u[k] - v[k];
-                self.pressure[k] = u[k];
-                let c = self.weight[k] * u[k].min(v[k]);
-                comp += c * c;
-            }
-        }
-        let m =
-            discretization::mass_residual(lv, &self.content, &self.pressure, time, &mut self.mass);
-        self.last_mass_norm = m;
-        m * m + comp
-    }
-}
-
-/// (u, v) = (max(ψ, 0), max(−ψ, 0)).
-fn split(psi: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    (
-        psi.iter().map(|x| x.max(0.0)).collect(),
-        psi.iter().map(|x| (-x).max(0.0)).collect(),
-    )
-}
-
-/// The full Newton step's (u⁺, v⁺) from the frozen-g solution y: u⁺ = y, v⁺ = 0 on full nodes;
-/// u⁺ = 0, v⁺ = −y on cavitated ones.
-fn active_split(y: &[f64], g: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    (
-        y.iter()
-            .zip(g)
-            .map(|(y, g)| if *g > 0.5 { *y } else { 0.0 })
-            .collect(),
-        y.iter()
-            .zip(g)
-            .map(|(y, g)| if *g > 0.5 { 0.0 } else { -*y })
-            .collect(),
-    )
+    /// Single (Murty) pivots taken.
+    single_pivots: usize,
 }
 
 /// g = H(ψ) (1 where ψ ≥ 0, else 0) on the unknowns; Dirichlet nodes keep theirs. Returns how
