@@ -129,6 +129,9 @@ fn half_speed_whirl_load_collapses() {
                 assert!(v.is_finite());
             }
             assert!(eccentricity_ratio.iter().all(|v| v.is_finite()));
+            eprintln!(
+                "whirl: collapse at t = {time:.4} s, crank {crank_angle_deg:.0}°, |ε| {eccentricity:.4}"
+            );
             assert!(eccentricity > 0.97 && eccentricity < 1.0, "{eccentricity}");
             assert!(min_film_thickness < 1e-6);
         }
@@ -136,8 +139,8 @@ fn half_speed_whirl_load_collapses() {
     }
 }
 
-/// The trap BDF2 (the default) and Crank–Nicolson avoid: backward Euler's chord of the whirl orbit is an
-/// inward squeeze velocity ≈ |ε| ω_W (ω_W dt)/2, and the film answers it with load capacity. The
+/// The trap BDF2 (the default) and Crank–Nicolson avoid: backward Euler's chord of the whirl
+/// orbit is an inward squeeze velocity ≈ |ε| ω_W (ω_W dt)/2, and the film answers it with load capacity. The
 /// same whirl load is then "carried" on an orbit that stays above the 1 µm floor.
 #[test]
 fn backward_euler_invents_load_capacity_for_the_whirl_load() {
@@ -267,6 +270,13 @@ fn halving_the_time_step_changes_h_min_and_power_loss_below_one_percent() {
     assert!(a.info.periodic && b.info.periodic);
     let dh = (a.summary.min_film_thickness / b.summary.min_film_thickness - 1.0).abs();
     let dp = (a.summary.mean_power_loss / b.summary.mean_power_loss - 1.0).abs();
+    eprintln!(
+        "1° / 0.5°: h_min {:.5} / {:.5} µm, mean power {:.4} / {:.4} W; changes {dh:.1e} / {dp:.1e}",
+        1e6 * a.summary.min_film_thickness,
+        1e6 * b.summary.min_film_thickness,
+        a.summary.mean_power_loss,
+        b.summary.mean_power_loss
+    );
     assert!(dh < 0.01, "h_min change {dh}");
     assert!(dp < 0.01, "power loss change {dp}");
 }
