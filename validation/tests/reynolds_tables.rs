@@ -40,6 +40,22 @@ fn solve(s: &mut ReynoldsSolver, eps: f64) -> FilmSolution {
     s.solve_steady([eps, 0.0], &c).unwrap()
 }
 
+/// The Couette shear force μU(1 − φ)/h dA that the film fractions φ < 1 of the cavitated
+/// cells leave out of our journal torque (ε along +x: h = c(1 − ε cos θ); the end rows are
+/// boundary points without area).
+fn unsheared_shear_force(sol: &FilmSolution, eps: f64) -> f64 {
+    let dth = sol.theta[1] - sol.theta[0];
+    let dz = sol.z[2] - sol.z[1];
+    let mut force = 0.0;
+    for (i, th) in sol.theta.iter().enumerate() {
+        let h = C * (1.0 - eps * th.cos());
+        for j in 1..sol.z.len() - 1 {
+            force += MU * R * OMEGA * (1.0 - sol.film_fraction[[i, j]]) / h * R * dth * dz;
+        }
+    }
+    force
+}
+
 /// (So, β in degrees, Q) in Butenschön's definitions.
 fn butenschoen_numbers(sol: &FilmSolution, b_over_d: f64) -> (f64, f64, f64) {
     let l = b_over_d * 2.0 * R;
@@ -93,6 +109,7 @@ fn butenschoen_rotation_table() {
 fn raimondi_boyd_table() {
     let rows = read_reference_csv("raimondi_boyd_full.csv");
     let mut worst = (0.0f64, 0.0f64, 0.0f64);
+    let mut worst_friction = 0.0f64;
     for ld in [1.0, 0.5] {
         let l = ld * 2.0 * R;
         let mut s = solver(ld, GridParams::default());
@@ -107,6 +124,27 @@ fn raimondi_boyd_table() {
             let som = (R / C).powi(2) * MU * n / pm;
             let phi = sol.attitude_angle.to_degrees();
             let qs = (sol.side_leakage[0] + sol.side_leakage[1]) / (R * C * n * l);
+            // Friction variable (R/c) f, f = (|T_journal| / R) / W. Our torque shears only the
+            // oil fraction φ of a cavitated cell (design.md §5); Raimondi & Boyd shear the full
+            // film over 360°, so their convention adds μU(1 − φ)/h over the cavitated cells.
+            let rcf_oil = (R / C) * (sol.friction_torque_journal.abs() / R) / sol.load_capacity;
+            let rcf = (R / C)
+                * ((sol.friction_torque_journal.abs() + R * unsheared_shear_force(&sol, eps)) / R)
+                / sol.load_capacity;
+            let e_f = (rcf - row[4]) / row[4];
+            eprintln!(
+                "   (R/c)f {rcf:.4} ({}) {:+.2} % (oil fraction only: {rcf_oil:.4})",
+                row[4],
+                100.0 * e_f
+            );
+            worst_friction = worst_friction.max(e_f.abs());
+            // Worst measured 1.0 % (L/D 1/2, ε 0.6); the table prints three digits.
+            assert!(
+                e_f.abs() < 0.02,
+                "L/D {ld} ε {eps}: (R/c)f {rcf} vs {}",
+                row[4]
+            );
+            assert!(rcf_oil < rcf);
             let qs_ref = q_ref * qs_frac;
             let (e_s, e_p, e_q) = ((som - s_ref) / s_ref, phi - phi_ref, (qs - qs_ref) / qs_ref);
             eprintln!(
@@ -126,10 +164,11 @@ fn raimondi_boyd_table() {
         }
     }
     eprintln!(
-        "Raimondi–Boyd worst: S {:.2} %, φ {:.2}°, Qs {:.2} %",
+        "Raimondi–Boyd worst: S {:.2} %, φ {:.2}°, Qs {:.2} %, (R/c)f {:.2} %",
         100.0 * worst.0,
         worst.1,
-        100.0 * worst.2
+        100.0 * worst.2,
+        100.0 * worst_friction
     );
 }
 
