@@ -62,14 +62,16 @@
 mod reynolds_film;
 mod short_bearing;
 mod solve;
+mod types;
 
 pub use reynolds_film::{ReynoldsFilm, film_response};
 
 pub use short_bearing::{ShortBearingFilm, ShortBearingParams, ShortBearingState, TimeScheme};
-pub use solve::{
+pub use solve::solve_inverse;
+pub use types::{
     CycleSummary, FieldSnapshot, InverseError, InverseInfo, InverseObserver, InverseParams,
     InversePhase, InverseProgress, InverseSolution, InverseStep, InverseWarning, JacobianMethod,
-    NoObserver, solve_inverse,
+    NoObserver,
 };
 
 use ndarray::Array2;
