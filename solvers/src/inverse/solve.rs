@@ -11,7 +11,7 @@
 //! Cycle numbering in errors and progress: 0 is the run-in, 1, 2, … the load cycles.
 
 use super::types::*;
-use super::{FilmConditions, FilmModel, FilmModelError, FilmResponse};
+use super::{FilmConditions, FilmFields, FilmModel, FilmModelError, FilmResponse};
 use crate::load::LoadHistory;
 use std::time::Instant;
 
@@ -125,10 +125,14 @@ where
         });
     }
 
-    let mut stats = Stats::default();
-    let mut jac = Jacobian {
-        m: [[0.0; 2]; 2],
-        valid: false,
+    let mut stepper = Stepper {
+        params,
+        w_ref,
+        jac: Jacobian {
+            m: [[0.0; 2]; 2],
+            valid: false,
+        },
+        stats: Stats::default(),
     };
     let conditions_at = |t: f64| -> Result<FilmConditions, InverseError> {
         let c = FilmConditions {
@@ -149,35 +153,27 @@ where
     };
 
     // ---- run-in: from ε = 0, full film, quasi-load ramped to W(0) at the conditions of t = 0.
-    let mut eps = [0.0; 2];
-    let mut eps_prev = [0.0; 2];
-    let mut eps_prev2 = [0.0; 2];
-    let mut state = film.initial_state(eps);
+    let mut orbit = Orbit {
+        eps: [0.0; 2],
+        prev: [0.0; 2],
+        prev2: [0.0; 2],
+        state: film.initial_state([0.0; 2]),
+    };
     let w0 = load.load(0.0);
     let cond0 = conditions_at(0.0)?;
+    // The ramp as a function of time (also at the midpoints of split steps).
+    let ramp = |tt: f64| {
+        let s = smoothstep(((run_in as f64 + tt / dt) / run_in as f64).clamp(0.0, 1.0));
+        Ok(([s * w0[0], s * w0[1]], cond0.clone()))
+    };
     for k in 1..=run_in {
         let t = -((run_in - k) as f64) * dt;
-        let s = smoothstep(k as f64 / run_in as f64);
-        let w = [s * w0[0], s * w0[1]];
         let at = Where {
             time: t,
             crank_angle_deg: load.crank_angle_deg(t),
             cycle: 0,
         };
-        let guess = predict_quadratic(eps, eps_prev, eps_prev2);
-        // The ramp as a function of time, for the midpoints of split steps.
-        let ramp = |tt: f64| {
-            let s = smoothstep(((run_in as f64 + tt / dt) / run_in as f64).clamp(0.0, 1.0));
-            Ok(([s * w0[0], s * w0[1]], cond0.clone()))
-        };
-        debug_assert!((ramp(t).map(|r| r.0[1]).unwrap_or(0.0) - w[1]).abs() <= 1e-9 * norm(w0));
-        let acc = advance(
-            params, film, &state, eps, guess, t, dt, &ramp, w_ref, &mut jac, &mut stats, at, 0,
-        )?;
-        eps_prev2 = eps_prev;
-        eps_prev = eps;
-        eps = acc.eps;
-        state = acc.state;
+        let step = orbit.march_step(&mut stepper, film, dt, &ramp, at, false)?;
         observer.on_step(&InverseProgress {
             phase: InversePhase::RunIn,
             step: k,
@@ -185,9 +181,9 @@ where
             max_cycles: params.max_cycles,
             time: t,
             crank_angle_deg: at.crank_angle_deg,
-            eccentricity_ratio: eps,
-            residual: acc.residual,
-            newton_iterations: acc.iterations,
+            eccentricity_ratio: orbit.eps,
+            residual: step.accepted.residual,
+            newton_iterations: step.accepted.iterations,
         });
     }
 
@@ -199,60 +195,43 @@ where
     let mut film_state_change = 0.0;
     let mut periodic = false;
     let mut cycles = 0;
+    let drive = |tt: f64| {
+        let w = load.load(tt);
+        if !(w[0].is_finite() && w[1].is_finite()) {
+            return Err(InverseError::NonFiniteLoad {
+                quantity: "load",
+                time: tt,
+            });
+        }
+        Ok((w, conditions_at(tt)?))
+    };
     for cycle in 1..=params.max_cycles {
         cycles = cycle;
         records.clear();
         snapshots.clear();
         let t_c = (cycle - 1) as f64 * period;
-        let state_start = state.clone();
+        let state_start = orbit.state.clone();
         for i in 0..n {
             let tau = (i + 1) as f64 * dt;
             let t = t_c + tau;
-            let w = load.load(t);
-            if !(w[0].is_finite() && w[1].is_finite()) {
-                return Err(InverseError::NonFiniteLoad {
-                    quantity: "load",
-                    time: t,
-                });
-            }
-            let cond = conditions_at(t)?;
+            let (w, _) = drive(t)?;
             let crank = load.crank_angle_deg(tau);
             let at = Where {
                 time: t,
                 crank_angle_deg: crank,
                 cycle,
             };
-            let guess = predict_quadratic(eps, eps_prev, eps_prev2);
-            let drive = |tt: f64| Ok((load.load(tt), conditions_at(tt)?));
-            let acc = advance(
-                params, film, &state, eps, guess, t, dt, &drive, w_ref, &mut jac, &mut stats, at, 0,
-            )?;
-            if params.field_stride > 0 && i % params.field_stride == 0 {
-                film.set_capture_fields(true);
-                let again = film.step(&state, acc.eps, dt, &cond);
-                film.set_capture_fields(false);
-                stats.evaluations += 1;
-                let (resp, _) = again.map_err(|source| InverseError::Film {
-                    time: t,
+            let capture = params.field_stride > 0 && i % params.field_stride == 0;
+            let step = orbit.march_step(&mut stepper, film, dt, &drive, at, capture)?;
+            if let Some(fields) = step.fields {
+                snapshots.push(FieldSnapshot {
+                    step_index: i,
+                    time: tau,
                     crank_angle_deg: crank,
-                    cycle,
-                    eccentricity_ratio: acc.eps,
-                    source,
-                })?;
-                if let Some(fields) = resp.fields {
-                    snapshots.push(FieldSnapshot {
-                        step_index: i,
-                        time: tau,
-                        crank_angle_deg: crank,
-                        fields,
-                    });
-                }
+                    fields,
+                });
             }
-            records.push(record(&acc, w, tau, crank));
-            eps_prev2 = eps_prev;
-            eps_prev = eps;
-            eps = acc.eps;
-            state = acc.state;
+            records.push(record(&step.accepted, w, tau, crank));
             observer.on_step(&InverseProgress {
                 phase: InversePhase::Cycle(cycle),
                 step: i + 1,
@@ -260,26 +239,17 @@ where
                 max_cycles: params.max_cycles,
                 time: t,
                 crank_angle_deg: crank,
-                eccentricity_ratio: eps,
-                residual: acc.residual,
-                newton_iterations: acc.iterations,
+                eccentricity_ratio: orbit.eps,
+                residual: step.accepted.residual,
+                newton_iterations: step.accepted.iterations,
             });
         }
         let current: Vec<[f64; 2]> = records.iter().map(|r| r.eccentricity_ratio).collect();
-        eccentricity_change = match &previous {
-            Some(p) => p
-                .iter()
-                .zip(&current)
-                .map(|(a, b)| norm([a[0] - b[0], a[1] - b[1]]))
-                .fold(0.0, f64::max),
-            None => f64::INFINITY,
-        };
-        film_state_change = film.state_change(&state_start, &state);
+        eccentricity_change = orbit_change(previous.as_deref(), &current);
+        film_state_change = film.state_change(&state_start, &orbit.state);
         observer.on_cycle(cycle, eccentricity_change, film_state_change);
         previous = Some(current);
-        if eccentricity_change <= params.periodicity_tolerance
-            && film_state_change <= params.film_state_tolerance
-        {
+        if is_periodic(params, eccentricity_change, film_state_change) {
             periodic = true;
             break;
         }
@@ -309,17 +279,35 @@ where
             film_state_change,
             warning,
             reference_load: w_ref,
-            newton_iterations: stats.newton,
-            max_newton_iterations_per_step: stats.max_newton,
-            film_evaluations: stats.evaluations,
-            jacobian_evaluations: stats.jacobians,
-            sweep_iterations: stats.sweeps,
-            stalled_steps: stats.stalled,
-            max_stalled_residual: stats.max_stalled,
-            split_steps: stats.split,
+            newton_iterations: stepper.stats.newton,
+            max_newton_iterations_per_step: stepper.stats.max_newton,
+            film_evaluations: stepper.stats.evaluations,
+            jacobian_evaluations: stepper.stats.jacobians,
+            sweep_iterations: stepper.stats.sweeps,
+            stalled_steps: stepper.stats.stalled,
+            max_stalled_residual: stepper.stats.max_stalled,
+            split_steps: stepper.stats.split,
             wall_time: start.elapsed().as_secs_f64(),
         },
     })
+}
+
+/// max_i |ε_i − ε_i(previous cycle)| over the cycle's steps; ∞ for the first cycle.
+fn orbit_change(previous: Option<&[[f64; 2]]>, current: &[[f64; 2]]) -> f64 {
+    match previous {
+        Some(p) => p
+            .iter()
+            .zip(current)
+            .map(|(a, b)| norm([a[0] - b[0], a[1] - b[1]]))
+            .fold(0.0, f64::max),
+        None => f64::INFINITY,
+    }
+}
+
+/// The periodicity test (module docs of [`super`]): the orbit and the film state both repeat
+/// from one cycle to the next within their tolerances.
+fn is_periodic(params: &InverseParams, orbit_change: f64, film_state_change: f64) -> bool {
+    orbit_change <= params.periodicity_tolerance && film_state_change <= params.film_state_tolerance
 }
 
 fn validate(p: &InverseParams) -> Result<(), InverseError> {
@@ -474,243 +462,233 @@ fn summarize(steps: &[InverseStep]) -> CycleSummary {
     }
 }
 
-/// Load and film conditions at a time, for [`advance`].
+/// Load and film conditions at a time, for [`Stepper::advance`].
 type Drive<'a> = dyn Fn(f64) -> Result<([f64; 2], FilmConditions), InverseError> + 'a;
 
-/// One time step from (`state`, `eps`) at `t_end − dt` to `t_end`. When Newton fails the step
-/// is retried as two half steps (the load and conditions of the midpoint from `drive`, the film
-/// state carried through it), recursively up to [`InverseParams::max_step_splits`] halvings.
-/// The Jacobian is refreshed by differences at every change of step length (the squeeze term
-/// scales with 1/dt). Collapse and film errors are not retried: a smaller step cannot cure them.
-#[allow(clippy::too_many_arguments)]
-fn advance<F: FilmModel + ?Sized>(
-    params: &InverseParams,
-    film: &mut F,
-    state: &F::State,
+/// What every step of one inverse solve shares: the parameters, the reference load W_ref, the
+/// Jacobian carried across steps and the run statistics.
+struct Stepper<'p> {
+    params: &'p InverseParams,
+    w_ref: f64,
+    jac: Jacobian,
+    stats: Stats,
+}
+
+/// One step to take: from ε at `t_end − dt` to `t_end`, Newton started at `guess`.
+#[derive(Clone, Copy)]
+struct Leg {
     eps: [f64; 2],
     guess: [f64; 2],
     t_end: f64,
     dt: f64,
-    drive: &Drive<'_>,
-    w_ref: f64,
-    jac: &mut Jacobian,
-    stats: &mut Stats,
     at: Where,
-    depth: usize,
-) -> Result<Accepted<F::State>, InverseError> {
-    let (w, cond) = drive(t_end)?;
-    match newton(
-        params, film, state, guess, dt, &cond, w, w_ref, jac, stats, at,
-    ) {
-        Err(InverseError::NewtonFailed { .. }) if depth < params.max_step_splits => {
-            if depth == 0 {
-                stats.split += 1;
-            }
-            let half = 0.5 * dt;
-            let t_mid = t_end - half;
-            let at_mid = Where { time: t_mid, ..at };
-            jac.valid = false;
-            let mid_guess = predict(eps, [2.0 * eps[0] - guess[0], 2.0 * eps[1] - guess[1]]);
-            let mid_guess = [0.5 * (eps[0] + mid_guess[0]), 0.5 * (eps[1] + mid_guess[1])];
-            let first = advance(
-                params,
-                film,
-                state,
-                eps,
-                mid_guess,
-                t_mid,
-                half,
-                drive,
-                w_ref,
-                jac,
-                stats,
-                at_mid,
-                depth + 1,
-            )?;
-            let end_guess = predict(first.eps, eps);
-            let last = advance(
-                params,
-                film,
-                &first.state,
-                first.eps,
-                end_guess,
-                t_end,
-                half,
-                drive,
-                w_ref,
-                jac,
-                stats,
-                at,
-                depth + 1,
-            );
-            jac.valid = false;
-            last
-        }
-        other => other,
+}
+
+/// The journal's last three accepted positions (the quadratic predictor's data) and the film
+/// state at the last one: what the march carries from step to step, in the run-in and in the
+/// cycles alike.
+struct Orbit<S> {
+    eps: [f64; 2],
+    prev: [f64; 2],
+    prev2: [f64; 2],
+    state: S,
+}
+
+/// A step taken by [`Orbit::march_step`].
+struct Marched {
+    accepted: Accepted<()>,
+    /// The step's fields, when asked for.
+    fields: Option<FilmFields>,
+}
+
+impl<S: Clone> Orbit<S> {
+    /// One time step of the march (run-in and cycles alike) to `at.time`: the quadratic
+    /// predictor's guess, [`Stepper::advance`] (halving the step where Newton fails), optionally the
+    /// accepted step solved once more with the fields captured, and the orbit moved on.
+    fn march_step<F: FilmModel<State = S> + ?Sized>(
+        &mut self,
+        stepper: &mut Stepper<'_>,
+        film: &mut F,
+        dt: f64,
+        drive: &Drive<'_>,
+        at: Where,
+        capture_fields: bool,
+    ) -> Result<Marched, InverseError> {
+        let t = at.time;
+        let leg = Leg {
+            eps: self.eps,
+            guess: predict_quadratic(self.eps, self.prev, self.prev2),
+            t_end: t,
+            dt,
+            at,
+        };
+        let acc = stepper.advance(film, &self.state, leg, drive, 0)?;
+        let fields = if capture_fields {
+            let (_, cond) = drive(t)?;
+            film.set_capture_fields(true);
+            let again = film.step(&self.state, acc.eps, dt, &cond);
+            film.set_capture_fields(false);
+            stepper.stats.evaluations += 1;
+            let (resp, _) = again.map_err(|source| InverseError::Film {
+                time: at.time,
+                crank_angle_deg: at.crank_angle_deg,
+                cycle: at.cycle,
+                eccentricity_ratio: acc.eps,
+                source,
+            })?;
+            resp.fields
+        } else {
+            None
+        };
+        self.prev2 = self.prev;
+        self.prev = self.eps;
+        self.eps = acc.eps;
+        self.state = acc.state;
+        Ok(Marched {
+            accepted: Accepted {
+                eps: acc.eps,
+                response: acc.response,
+                state: (),
+                residual: acc.residual,
+                iterations: acc.iterations,
+            },
+            fields,
+        })
     }
 }
 
-/// Newton on r(ε) = F_film(ε) + W for one step; see the module docs of [`super`].
-#[allow(clippy::too_many_arguments)]
-fn newton<F: FilmModel + ?Sized>(
-    params: &InverseParams,
-    film: &mut F,
-    state: &F::State,
-    guess: [f64; 2],
-    dt: f64,
-    cond: &FilmConditions,
-    w: [f64; 2],
-    w_ref: f64,
-    jac: &mut Jacobian,
-    stats: &mut Stats,
-    at: Where,
-) -> Result<Accepted<F::State>, InverseError> {
-    let scale = norm(w).max(w_ref);
-    let eval = |film: &mut F, eps: [f64; 2], stats: &mut Stats| {
-        stats.evaluations += 1;
-        match film.step(state, eps, dt, cond) {
-            Ok((resp, st)) => {
-                stats.sweeps += resp.sweep_iterations;
-                let r = [resp.film_force[0] + w[0], resp.film_force[1] + w[1]];
-                if !(r[0].is_finite() && r[1].is_finite()) {
-                    return Err(InverseError::Film {
-                        time: at.time,
-                        crank_angle_deg: at.crank_angle_deg,
-                        cycle: at.cycle,
-                        eccentricity_ratio: eps,
-                        source: FilmModelError::NonFinite {
-                            quantity: "film force",
-                        },
-                    });
-                }
-                Ok((resp, st, r))
-            }
-            Err(source) => Err(InverseError::Film {
-                time: at.time,
-                crank_angle_deg: at.crank_angle_deg,
-                cycle: at.cycle,
-                eccentricity_ratio: eps,
-                source,
-            }),
-        }
-    };
-    let collapse = |eps: [f64; 2], h: f64, res: f64| InverseError::Collapse {
-        time: at.time,
-        crank_angle_deg: at.crank_angle_deg,
-        cycle: at.cycle,
-        eccentricity_ratio: eps,
-        eccentricity: norm(eps),
-        min_film_thickness: h,
-        residual: res,
-    };
-
-    // Newton cannot reach `tolerance` (iteration limit, or no descent on a fresh Jacobian): the
-    // best point is accepted as a stall if within `accept_tolerance`, else the step fails. (|ε|
-    // below the collapse limit was checked at the top of the iteration that produced `eps`.)
-    let give_up = |stats: &mut Stats,
-                   eps: [f64; 2],
-                   resp: FilmResponse,
-                   st: F::State,
-                   res: f64,
-                   iterations: usize|
-     -> Result<Accepted<F::State>, InverseError> {
-        stats.newton += iterations;
-        if res > params.accept_tolerance {
-            return Err(InverseError::NewtonFailed {
-                time: at.time,
-                crank_angle_deg: at.crank_angle_deg,
-                cycle: at.cycle,
-                iterations,
-                residual: res,
-                eccentricity_ratio: eps,
-            });
-        }
-        stats.stalled += 1;
-        stats.max_stalled = stats.max_stalled.max(res);
-        stats.max_newton = stats.max_newton.max(iterations);
-        if resp.min_film_thickness < params.min_film_floor {
-            return Err(collapse(eps, resp.min_film_thickness, res));
-        }
-        Ok(Accepted {
-            eps,
-            response: resp,
-            state: st,
-            residual: res,
-            iterations,
-        })
-    };
-
-    let mut eps = guess;
-    let (mut resp, mut st, mut r) = eval(film, eps, stats)?;
-    // Where the film model was last solved (its exact Jacobian is that point's).
-    let mut last_solved = eps;
-    let mut res = norm(r) / scale;
-    let mut iterations = 0;
-    let mut fresh = false;
-    // After a stall on a fresh Jacobian, one retry with a secant over a 100× wider difference
-    // step (≥ 1e-3): it averages over the small force jumps of a switching JFO film.
-    let mut wide_tried = false;
-    let mut fd_h = params.fd_step;
-    loop {
-        let e = norm(eps);
-        if e >= params.collapse_eccentricity
-            || (res <= params.tolerance && resp.min_film_thickness < params.min_film_floor)
-        {
-            return Err(collapse(eps, resp.min_film_thickness, res));
-        }
-        if res <= params.tolerance {
-            stats.newton += iterations;
-            stats.max_newton = stats.max_newton.max(iterations);
-            return Ok(Accepted {
-                eps,
-                response: resp,
-                state: st,
-                residual: res,
-                iterations,
-            });
-        }
-        if iterations >= params.max_newton_iterations {
-            return give_up(stats, eps, resp, st, res, iterations);
-        }
-        iterations += 1;
-        let exact = match params.jacobian {
-            JacobianMethod::Exact if !jac.valid => {
-                if last_solved != eps {
-                    eval(film, eps, stats)?;
-                    last_solved = eps;
-                }
-                film.force_jacobian()
-            }
-            _ => None,
+impl Stepper<'_> {
+    /// One time step `leg` from `state`. When Newton fails the step is retried as two half
+    /// steps (the load and conditions of the midpoint from `drive`, the film state carried
+    /// through it), recursively up to [`InverseParams::max_step_splits`] halvings. The Jacobian
+    /// is refreshed at every change of step length (the squeeze term scales with 1/dt).
+    /// Collapse and film errors are not retried: a smaller step cannot cure them.
+    fn advance<F: FilmModel + ?Sized>(
+        &mut self,
+        film: &mut F,
+        state: &F::State,
+        leg: Leg,
+        drive: &Drive<'_>,
+        depth: usize,
+    ) -> Result<Accepted<F::State>, InverseError> {
+        let (w, cond) = drive(leg.t_end)?;
+        let target = Target {
+            dt: leg.dt,
+            cond: &cond,
+            w,
+            at: leg.at,
         };
-        if let Some(m) = exact {
-            stats.jacobians += 1;
-            jac.m = m.map_err(|source| InverseError::Film {
-                time: at.time,
-                crank_angle_deg: at.crank_angle_deg,
-                cycle: at.cycle,
-                eccentricity_ratio: eps,
-                source,
-            })?;
-            jac.valid = true;
-            fresh = true;
-        } else if !jac.valid || params.jacobian == JacobianMethod::FiniteDifference {
-            let mut eval_here = |e: [f64; 2], stats: &mut Stats| eval(film, e, stats);
-            jac.m = fd_jacobian(&mut eval_here, eps, resp.film_force, w, fd_h, stats)?;
-            last_solved = [f64::NAN; 2];
-            fd_h = params.fd_step;
-            jac.valid = true;
-            fresh = true;
+        match self.newton(film, state, leg.guess, target) {
+            Err(InverseError::NewtonFailed { .. }) if depth < self.params.max_step_splits => {
+                if depth == 0 {
+                    self.stats.split += 1;
+                }
+                let Leg {
+                    eps, guess, t_end, ..
+                } = leg;
+                let half = 0.5 * leg.dt;
+                let t_mid = t_end - half;
+                self.jac.valid = false;
+                let mid_guess = predict(eps, [2.0 * eps[0] - guess[0], 2.0 * eps[1] - guess[1]]);
+                let first = self.advance(
+                    film,
+                    state,
+                    Leg {
+                        eps,
+                        guess: [0.5 * (eps[0] + mid_guess[0]), 0.5 * (eps[1] + mid_guess[1])],
+                        t_end: t_mid,
+                        dt: half,
+                        at: Where {
+                            time: t_mid,
+                            ..leg.at
+                        },
+                    },
+                    drive,
+                    depth + 1,
+                )?;
+                let last = self.advance(
+                    film,
+                    &first.state,
+                    Leg {
+                        eps: first.eps,
+                        guess: predict(first.eps, eps),
+                        t_end,
+                        dt: half,
+                        at: leg.at,
+                    },
+                    drive,
+                    depth + 1,
+                );
+                self.jac.valid = false;
+                last
+            }
+            other => other,
         }
-        // Solve J Δ = −r.
-        let m = jac.m;
-        let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-        let mut delta = [
-            (-r[0] * m[1][1] + r[1] * m[0][1]) / det,
-            (-r[1] * m[0][0] + r[0] * m[1][0]) / det,
-        ];
-        if !(det != 0.0 && delta[0].is_finite() && delta[1].is_finite()) {
-            if fresh {
+    }
+    /// Newton on r(ε) = F_film(ε) + W for one step; see the module docs of [`super`].
+    fn newton<F: FilmModel + ?Sized>(
+        &mut self,
+        film: &mut F,
+        state: &F::State,
+        guess: [f64; 2],
+        target: Target<'_>,
+    ) -> Result<Accepted<F::State>, InverseError> {
+        let Target { dt, cond, w, at } = target;
+        let params = self.params;
+        let w_ref = self.w_ref;
+        let jac = &mut self.jac;
+        let stats = &mut self.stats;
+        let scale = norm(w).max(w_ref);
+        let eval = |film: &mut F, eps: [f64; 2], stats: &mut Stats| {
+            stats.evaluations += 1;
+            match film.step(state, eps, dt, cond) {
+                Ok((resp, st)) => {
+                    stats.sweeps += resp.sweep_iterations;
+                    let r = [resp.film_force[0] + w[0], resp.film_force[1] + w[1]];
+                    if !(r[0].is_finite() && r[1].is_finite()) {
+                        return Err(InverseError::Film {
+                            time: at.time,
+                            crank_angle_deg: at.crank_angle_deg,
+                            cycle: at.cycle,
+                            eccentricity_ratio: eps,
+                            source: FilmModelError::NonFinite {
+                                quantity: "film force",
+                            },
+                        });
+                    }
+                    Ok((resp, st, r))
+                }
+                Err(source) => Err(InverseError::Film {
+                    time: at.time,
+                    crank_angle_deg: at.crank_angle_deg,
+                    cycle: at.cycle,
+                    eccentricity_ratio: eps,
+                    source,
+                }),
+            }
+        };
+        let collapse = |eps: [f64; 2], h: f64, res: f64| InverseError::Collapse {
+            time: at.time,
+            crank_angle_deg: at.crank_angle_deg,
+            cycle: at.cycle,
+            eccentricity_ratio: eps,
+            eccentricity: norm(eps),
+            min_film_thickness: h,
+            residual: res,
+        };
+
+        // Newton cannot reach `tolerance` (iteration limit, or no descent on a fresh Jacobian): the
+        // best point is accepted as a stall if within `accept_tolerance`, else the step fails. (|ε|
+        // below the collapse limit was checked at the top of the iteration that produced `eps`.)
+        let give_up = |stats: &mut Stats,
+                       eps: [f64; 2],
+                       resp: FilmResponse,
+                       st: F::State,
+                       res: f64,
+                       iterations: usize|
+         -> Result<Accepted<F::State>, InverseError> {
+            stats.newton += iterations;
+            if res > params.accept_tolerance {
                 return Err(InverseError::NewtonFailed {
                     time: at.time,
                     crank_angle_deg: at.crank_angle_deg,
@@ -720,66 +698,171 @@ fn newton<F: FilmModel + ?Sized>(
                     eccentricity_ratio: eps,
                 });
             }
-            jac.valid = false;
-            continue;
-        }
-        let dn = norm(delta);
-        if dn > params.max_newton_step {
-            let s = params.max_newton_step / dn;
-            delta = [delta[0] * s, delta[1] * s];
-        }
-        // Never close more than half of the remaining gap to the wall.
-        let limit = e + 0.5 * (1.0 - e);
-        let mut lambda = 1.0;
-        while norm([eps[0] + lambda * delta[0], eps[1] + lambda * delta[1]]) > limit {
-            lambda *= 0.5;
-        }
-        // Backtracking on |r|.
-        let mut accepted = false;
-        for _ in 0..8 {
-            let trial = [eps[0] + lambda * delta[0], eps[1] + lambda * delta[1]];
-            let (tresp, tst, tr) = eval(film, trial, stats)?;
-            last_solved = trial;
-            let tres = norm(tr) / scale;
-            if tres < res {
-                let s = [trial[0] - eps[0], trial[1] - eps[1]];
-                match params.jacobian {
-                    JacobianMethod::Broyden => {
-                        broyden(&mut jac.m, s, [tr[0] - r[0], tr[1] - r[1]]);
+            stats.stalled += 1;
+            stats.max_stalled = stats.max_stalled.max(res);
+            stats.max_newton = stats.max_newton.max(iterations);
+            if resp.min_film_thickness < params.min_film_floor {
+                return Err(collapse(eps, resp.min_film_thickness, res));
+            }
+            Ok(Accepted {
+                eps,
+                response: resp,
+                state: st,
+                residual: res,
+                iterations,
+            })
+        };
+
+        let mut eps = guess;
+        let (mut resp, mut st, mut r) = eval(film, eps, stats)?;
+        // Where the film model was last solved (its exact Jacobian is that point's).
+        let mut last_solved = eps;
+        let mut res = norm(r) / scale;
+        let mut iterations = 0;
+        let mut fresh = false;
+        // After a stall on a fresh Jacobian, one retry with a secant over a 100× wider difference
+        // step (≥ 1e-3): it averages over the small force jumps of a switching JFO film.
+        let mut wide_tried = false;
+        let mut fd_h = params.fd_step;
+        loop {
+            let e = norm(eps);
+            if e >= params.collapse_eccentricity
+                || (res <= params.tolerance && resp.min_film_thickness < params.min_film_floor)
+            {
+                return Err(collapse(eps, resp.min_film_thickness, res));
+            }
+            if res <= params.tolerance {
+                stats.newton += iterations;
+                stats.max_newton = stats.max_newton.max(iterations);
+                return Ok(Accepted {
+                    eps,
+                    response: resp,
+                    state: st,
+                    residual: res,
+                    iterations,
+                });
+            }
+            if iterations >= params.max_newton_iterations {
+                return give_up(stats, eps, resp, st, res, iterations);
+            }
+            iterations += 1;
+            let exact = match params.jacobian {
+                JacobianMethod::Exact if !jac.valid => {
+                    if last_solved != eps {
+                        eval(film, eps, stats)?;
+                        last_solved = eps;
                     }
-                    // Chord steps on the step's exact Jacobian while they contract well;
-                    // a fresh one when the residual falls by less than 4×.
-                    JacobianMethod::Exact if tres > 0.25 * res => jac.valid = false,
-                    _ => {}
+                    film.force_jacobian()
                 }
-                eps = trial;
-                resp = tresp;
-                st = tst;
-                r = tr;
-                res = tres;
-                accepted = true;
-                fresh = false;
-                break;
+                _ => None,
+            };
+            if let Some(m) = exact {
+                stats.jacobians += 1;
+                jac.m = m.map_err(|source| InverseError::Film {
+                    time: at.time,
+                    crank_angle_deg: at.crank_angle_deg,
+                    cycle: at.cycle,
+                    eccentricity_ratio: eps,
+                    source,
+                })?;
+                jac.valid = true;
+                fresh = true;
+            } else if !jac.valid || params.jacobian == JacobianMethod::FiniteDifference {
+                let mut eval_here = |e: [f64; 2], stats: &mut Stats| eval(film, e, stats);
+                jac.m = fd_jacobian(&mut eval_here, eps, resp.film_force, w, fd_h, stats)?;
+                last_solved = [f64::NAN; 2];
+                fd_h = params.fd_step;
+                jac.valid = true;
+                fresh = true;
             }
-            if !fresh {
-                // A stale Broyden Jacobian: refresh it before cutting the step.
-                break;
-            }
-            lambda *= 0.5;
-        }
-        if !accepted {
-            if fresh && !wide_tried && params.jacobian != JacobianMethod::Exact {
-                wide_tried = true;
-                fd_h = (100.0 * params.fd_step).max(1e-3);
+            // Solve J Δ = −r.
+            let m = jac.m;
+            let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+            let mut delta = [
+                (-r[0] * m[1][1] + r[1] * m[0][1]) / det,
+                (-r[1] * m[0][0] + r[0] * m[1][0]) / det,
+            ];
+            if !(det != 0.0 && delta[0].is_finite() && delta[1].is_finite()) {
+                if fresh {
+                    return Err(InverseError::NewtonFailed {
+                        time: at.time,
+                        crank_angle_deg: at.crank_angle_deg,
+                        cycle: at.cycle,
+                        iterations,
+                        residual: res,
+                        eccentricity_ratio: eps,
+                    });
+                }
                 jac.valid = false;
                 continue;
             }
-            if fresh {
-                return give_up(stats, eps, resp, st, res, iterations);
+            let dn = norm(delta);
+            if dn > params.max_newton_step {
+                let s = params.max_newton_step / dn;
+                delta = [delta[0] * s, delta[1] * s];
             }
-            jac.valid = false;
+            // Never close more than half of the remaining gap to the wall.
+            let limit = e + 0.5 * (1.0 - e);
+            let mut lambda = 1.0;
+            while norm([eps[0] + lambda * delta[0], eps[1] + lambda * delta[1]]) > limit {
+                lambda *= 0.5;
+            }
+            // Backtracking on |r|.
+            let mut accepted = false;
+            for _ in 0..8 {
+                let trial = [eps[0] + lambda * delta[0], eps[1] + lambda * delta[1]];
+                let (tresp, tst, tr) = eval(film, trial, stats)?;
+                last_solved = trial;
+                let tres = norm(tr) / scale;
+                if tres < res {
+                    let s = [trial[0] - eps[0], trial[1] - eps[1]];
+                    match params.jacobian {
+                        JacobianMethod::Broyden => {
+                            broyden(&mut jac.m, s, [tr[0] - r[0], tr[1] - r[1]]);
+                        }
+                        // Chord steps on the step's exact Jacobian while they contract well;
+                        // a fresh one when the residual falls by less than 4×.
+                        JacobianMethod::Exact if tres > 0.25 * res => jac.valid = false,
+                        _ => {}
+                    }
+                    eps = trial;
+                    resp = tresp;
+                    st = tst;
+                    r = tr;
+                    res = tres;
+                    accepted = true;
+                    fresh = false;
+                    break;
+                }
+                if !fresh {
+                    // A stale Broyden Jacobian: refresh it before cutting the step.
+                    break;
+                }
+                lambda *= 0.5;
+            }
+            if !accepted {
+                if fresh && !wide_tried && params.jacobian != JacobianMethod::Exact {
+                    wide_tried = true;
+                    fd_h = (100.0 * params.fd_step).max(1e-3);
+                    jac.valid = false;
+                    continue;
+                }
+                if fresh {
+                    return give_up(stats, eps, resp, st, res, iterations);
+                }
+                jac.valid = false;
+            }
         }
     }
+}
+
+/// What one Newton solve aims at: the step length, the conditions and load at its end, and
+/// where it is (for errors).
+struct Target<'c> {
+    dt: f64,
+    cond: &'c FilmConditions,
+    w: [f64; 2],
+    at: Where,
 }
 
 type Eval<'a, S> =
