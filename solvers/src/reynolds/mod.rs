@@ -298,9 +298,12 @@ pub struct FilmSolution {
     pub friction_torque_bearing: f64,
     /// Viscous dissipation ∫∫ [μU²f/h + h³/(12μ)|∇p|²] dA, W (design.md §5).
     pub power_loss: f64,
-    /// Switch (outer) iterations.
+    /// Semismooth Newton iterations of the complementarity solve (one frozen-switch linear
+    /// solve each).
     pub iterations: usize,
-    /// Krylov iterations summed over the switch iterations.
+    /// Of these, single (Murty) pivots taken by the safeguard (0 in a plain active-set run).
+    pub single_pivots: usize,
+    /// Krylov iterations summed over the Newton iterations.
     pub linear_iterations: usize,
     /// Final relative discrete mass residual.
     pub residual: f64,
@@ -357,7 +360,7 @@ pub enum ReynoldsError {
     #[error(
         "complementarity (JFO switch) not converged after {iterations} semismooth Newton \
          iterations: relative mass residual {residual:e} > tolerance {tolerance:e}; \
-         {switched_last} of {n_unknown} nodes changed state in the last step"
+         {switched_last} of {n_unknown} nodes were infeasible in the last step"
     )]
     ComplementarityNotConverged {
         iterations: usize,
@@ -413,6 +416,7 @@ pub(crate) struct Core {
     flux_theta: Vec<f64>,
     flux_z: Vec<f64>,
     iterations: usize,
+    single_pivots: usize,
     linear_iterations: usize,
     residual: f64,
 }
@@ -1119,6 +1123,7 @@ impl ReynoldsSolver {
             flux_theta,
             flux_z,
             iterations: iteration,
+            single_pivots: newton.single_pivots,
             linear_iterations,
             residual,
         })

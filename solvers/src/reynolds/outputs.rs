@@ -216,6 +216,7 @@ pub(crate) fn film_solution(
         friction_torque_bearing: tb,
         power_loss: power,
         iterations: core.iterations,
+        single_pivots: core.single_pivots,
         linear_iterations: core.linear_iterations,
         residual: core.residual,
         theta: (0..nt).map(|i| grid.theta(i)).collect(),
