@@ -402,9 +402,15 @@ pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> Me
             ("film_model".into(), ParameterValue::Text(film_name.into())),
             ("cycles".into(), ParameterValue::Integer(info.cycles as i64)),
             ("periodic".into(), ParameterValue::Flag(info.periodic)),
+            // After a single cycle there is no previous one to compare with (the solver's
+            // change is +∞): the attribute says so instead of holding a non-finite number.
             (
                 "eccentricity_change".into(),
-                ParameterValue::Number(info.eccentricity_change),
+                if info.eccentricity_change.is_finite() {
+                    ParameterValue::Number(info.eccentricity_change)
+                } else {
+                    ParameterValue::Text("not assessed: a single cycle was run".into())
+                },
             ),
             (
                 "film_state_change".into(),

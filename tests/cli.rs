@@ -325,6 +325,42 @@ fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
     }
 }
 
+/// `max_cycles = 1` (the documented minimum) keeps the solve: the file says that periodicity
+/// was not assessed instead of the run failing on a non-finite cycle-to-cycle change.
+#[test]
+fn a_single_cycle_run_keeps_its_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let toml_text = std::fs::read_to_string(root().join("cases/flores2006_mobility.toml"))
+        .unwrap()
+        .replace("rigorous = false", "rigorous = true")
+        .replace(
+            "mobility_model = \"booker\"",
+            "mobility_model = \"booker\"\nrigorous_film = \"short_bearing\"\nmax_cycles = 1",
+        );
+    let case = dir.path().join("flores_one_cycle.toml");
+    std::fs::write(&case, toml_text).unwrap();
+    std::fs::copy(
+        root().join("cases/flores2006_load.csv"),
+        dir.path().join("flores2006_load.csv"),
+    )
+    .unwrap();
+    let out_dir = dir.path().join("out");
+    let out = jbearing(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let f = hdf5_metno::File::open(out_dir.join("flores2006_mobility.h5")).unwrap();
+    let g = f.group("rigorous").unwrap();
+    let cycles: i64 = g.attr("cycles").unwrap().read_scalar().unwrap();
+    assert_eq!(cycles, 1);
+    let change: hdf5_metno::types::VarLenUnicode =
+        g.attr("eccentricity_change").unwrap().read_scalar().unwrap();
+    assert_eq!(change.as_str(), "not assessed: a single cycle was run");
+}
+
 /// `jbearing closed-form` on the seed 004 simple bearing prints ε of each model; the values are
 /// the README's "Seed 004 Table 1 simple bearing" table (published closed forms, seed 004
 /// eqs. 6–13, checked against the paper's converged force F_Y = 31.275 N), to its 4 decimals.
