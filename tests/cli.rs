@@ -356,8 +356,11 @@ fn a_single_cycle_run_keeps_its_result() {
     let g = f.group("rigorous").unwrap();
     let cycles: i64 = g.attr("cycles").unwrap().read_scalar().unwrap();
     assert_eq!(cycles, 1);
-    let change: hdf5_metno::types::VarLenUnicode =
-        g.attr("eccentricity_change").unwrap().read_scalar().unwrap();
+    let change: hdf5_metno::types::VarLenUnicode = g
+        .attr("eccentricity_change")
+        .unwrap()
+        .read_scalar()
+        .unwrap();
     assert_eq!(change.as_str(), "not assessed: a single cycle was run");
 }
 
