@@ -107,6 +107,8 @@ impl RunObserver for BarObserver {
 }
 
 /// Run every case in `paths` with up to `jobs` threads (0 = all cores), writing into `out_dir`.
+/// More threads than cases (or than cores, when `jobs` asks for more) would only wait: the
+/// pool gets at most min(cases, cores) threads, whatever `jobs` says.
 /// Progress bars go to stderr when `progress` is true. Returns one entry per case, in order.
 pub fn run_batch(
     paths: &[PathBuf],
@@ -139,10 +141,12 @@ pub fn run_batch(
             .expect("progress bars")
             .push((name, bar));
     }
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = if jobs == 0 { cores } else { jobs.min(cores) };
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs)
+        .num_threads(threads.min(paths.len()).max(1))
         .build()
-        .expect("thread pool");
+        .expect("a thread pool of at most as many threads as cores");
     let entries: Vec<BatchEntry> = pool.install(|| {
         paths
             .par_iter()

@@ -325,6 +325,24 @@ fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
     }
 }
 
+/// `batch --jobs 100000` runs (the pool is capped at the cores and the cases) instead of
+/// spawning thousands of threads and panicking (issue 12, item 2).
+#[test]
+fn an_absurd_jobs_count_is_capped() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = jbearing(&[
+        "batch",
+        "cases/flores2006_mobility.toml",
+        "--jobs",
+        "100000",
+        "--no-progress",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(dir.path().join("flores2006_mobility.h5").exists());
+}
+
 /// `max_cycles = 1` (the documented minimum) keeps the solve: the file says that periodicity
 /// was not assessed instead of the run failing on a non-finite cycle-to-cycle change.
 #[test]
