@@ -141,6 +141,24 @@ pub fn run_batch(
             .expect("progress bars")
             .push((name, bar));
     }
+    // Cases whose name an earlier case of the batch already has would overwrite its files:
+    // they fail before any solve, naming the earlier file (a case file that cannot be read
+    // fails later with its own error).
+    let mut first_with_name: std::collections::HashMap<String, &PathBuf> =
+        std::collections::HashMap::new();
+    let duplicate_of: Vec<Option<(String, PathBuf)>> = paths
+        .iter()
+        .map(|p| {
+            let name = crate::case::Case::from_file(p).ok()?.name;
+            match first_with_name.get(&name) {
+                Some(other) => Some((name, (*other).clone())),
+                None => {
+                    first_with_name.insert(name, p);
+                    None
+                }
+            }
+        })
+        .collect();
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let threads = if jobs == 0 { cores } else { jobs.min(cores) };
     let pool = rayon::ThreadPoolBuilder::new()
@@ -151,9 +169,17 @@ pub fn run_batch(
         paths
             .par_iter()
             .zip(bars.par_iter())
-            .map(|(p, bar)| {
+            .zip(duplicate_of.par_iter())
+            .map(|((p, bar), duplicate)| {
                 bar.set_message("reading the case");
-                let result = run_case_file(p, out_dir, &observer);
+                let result = match duplicate {
+                    Some((name, other)) => Err(RunError::DuplicateName {
+                        case: name.clone(),
+                        path: p.display().to_string(),
+                        other: other.display().to_string(),
+                    }),
+                    None => run_case_file(p, out_dir, &observer),
+                };
                 match &result {
                     Ok(o) => bar.finish_with_message(format!("done, {} files", o.files.len())),
                     Err(e) => bar.finish_with_message(format!("FAILED: {e}")),

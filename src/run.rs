@@ -82,6 +82,20 @@ pub enum RunError {
         /// What failed.
         message: String,
     },
+    /// Another case of the same batch has the same name (its output files would be
+    /// overwritten).
+    #[error(
+        "{path}: case name '{case}' is already used by {other} in this batch: their output \
+         files would overwrite each other (give each case its own name)"
+    )]
+    DuplicateName {
+        /// Case name.
+        case: String,
+        /// This case file.
+        path: String,
+        /// The earlier case file with the same name.
+        other: String,
+    },
     /// The rigorous (inverse) method failed.
     #[error("case '{case}': rigorous method: {message}")]
     Rigorous {

@@ -343,6 +343,32 @@ fn an_absurd_jobs_count_is_capped() {
     assert!(dir.path().join("flores2006_mobility.h5").exists());
 }
 
+/// One case given twice in a batch: the second fails before any solve, naming the first
+/// file, instead of silently overwriting its outputs; the first still runs (issue 12, item 4).
+#[test]
+fn a_duplicate_case_name_in_a_batch_fails_before_the_solve() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = "cases/flores2006_mobility.toml";
+    let out = jbearing(&[
+        "batch",
+        case,
+        case,
+        "--no-progress",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains(&format!(
+            "{case}: case name 'flores2006_mobility' is already used by {case} in this batch"
+        )),
+        "{stdout}"
+    );
+    assert!(dir.path().join("flores2006_mobility.h5").exists());
+    let summary = std::fs::read_to_string(dir.path().join("batch_summary.csv")).unwrap();
+    assert_eq!(summary.matches(",failed,").count(), 1, "{summary}");
+}
+
 /// `max_cycles = 1` (the documented minimum) keeps the solve: the file says that periodicity
 /// was not assessed instead of the run failing on a non-finite cycle-to-cycle change.
 #[test]
