@@ -27,7 +27,7 @@ fn text(b: &[u8]) -> String {
 }
 
 /// One bad case per kind the application must reject with a precise message.
-const KINDS: [&str; 13] = [
+const KINDS: [&str; 14] = [
     "syntax_error",
     "unknown_key",
     "missing_key",
@@ -41,6 +41,7 @@ const KINDS: [&str; 13] = [
     "impossible_grid",
     "missing_csv",
     "bad_csv_row",
+    "feed_span",
 ];
 
 #[test]
@@ -75,6 +76,7 @@ fn each_bad_case_gives_its_exact_message_with_file_key_and_line() {
             "lubricant.",
             "load.",
             "grid.",
+            "feed.",
             "version",
             "radius_m",
         ]

@@ -612,6 +612,24 @@ impl<'a> Ctx<'a> {
 /// A CSV table as read: the file's text, the crank angles (deg) and the wanted columns (SI).
 pub(crate) type CsvTable = (String, Vec<f64>, Vec<Vec<f64>>);
 
+/// A periodic history table must span less than one cycle (the load table's rule, applied to
+/// the feed and speed tables too: a longer table would be cut off silently).
+fn check_span(ctx: &Ctx<'_>, key: &str, angles: &[f64], cycle_deg: f64) -> Result<(), CaseError> {
+    if let (Some(first), Some(last)) = (angles.first(), angles.last()) {
+        let span = last - first;
+        if span >= cycle_deg {
+            return Err(ctx.err(
+                key,
+                format!(
+                    "table spans {span}° (from {first}° to {last}°) which does not fit in one \
+                     cycle of {cycle_deg}°"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Check an inline table's angles: finite, increasing, non-empty, lengths match.
 fn check_inline(
     ctx: &Ctx<'_>,
@@ -822,6 +840,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
                 ],
             )?;
             input_files.push(InputFile { path: rel, text });
+            check_span(ctx, "operation.speed_file", &angles, cycle_deg)?;
             (
                 Schedule::Table {
                     angles_deg: angles.clone(),
@@ -997,6 +1016,14 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         ("feed_pressure", Quantity::Pressure),
     )?
     .unwrap_or(Schedule::Constant(ambient_pressure));
+    if let Schedule::Table { angles_deg, .. } = &feed_pressure {
+        let key = if f.file.is_some() {
+            "feed.file"
+        } else {
+            "feed.crank_angle_deg"
+        };
+        check_span(ctx, key, angles_deg, cycle_deg)?;
+    }
     if grooves.is_empty()
         && !matches!(feed_pressure, Schedule::Constant(p) if p == ambient_pressure)
     {
