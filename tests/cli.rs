@@ -27,7 +27,7 @@ fn text(b: &[u8]) -> String {
 }
 
 /// One bad case per kind the application must reject with a precise message.
-const KINDS: [&str; 14] = [
+const KINDS: [&str; 15] = [
     "syntax_error",
     "unknown_key",
     "missing_key",
@@ -42,6 +42,7 @@ const KINDS: [&str; 14] = [
     "missing_csv",
     "bad_csv_row",
     "feed_span",
+    "no_supply",
 ];
 
 #[test]
@@ -77,6 +78,7 @@ fn each_bad_case_gives_its_exact_message_with_file_key_and_line() {
             "load.",
             "grid.",
             "feed.",
+            "methods.",
             "version",
             "radius_m",
         ]

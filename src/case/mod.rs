@@ -1156,6 +1156,22 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             "every method is switched off: nothing to compute",
         ));
     }
+    // The mass-conserving film needs oil from somewhere: a groove, or ends above p_cav (the
+    // solver would refuse it only after the other methods had run).
+    if m.rigorous
+        && rigorous_film == RigorousFilm::Reynolds
+        && grooves.is_empty()
+        && ambient_pressure <= cavitation_pressure
+    {
+        return Err(ctx.err(
+            "methods.rigorous",
+            format!(
+                "the mass-conserving (JFO) film has no oil supply: no [[grooves]] and the ends at \
+                 p_amb = {ambient_pressure} Pa ≤ p_cav = {cavitation_pressure} Pa (add a feed \
+                 groove, raise lubricant.ambient_pressure_pa, or set rigorous = false)"
+            ),
+        ));
+    }
 
     Ok(Case {
         name,
