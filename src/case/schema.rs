@@ -250,12 +250,13 @@ fn default_starved_film_fraction() -> f64 {
 fn default_interpolation() -> String {
     "linear".into()
 }
-/// 2° spacing: resolves a 25 mm groove on a 27 mm radius (52°) with 26 nodes.
+/// The library's validated default grid (`GridParams::default()`, 120 × 31): what the
+/// application runs by default is what the validation tests run.
 fn default_n_theta() -> usize {
-    180
+    jbearing_solvers::reynolds::GridParams::default().n_theta
 }
 fn default_n_z() -> usize {
-    21
+    jbearing_solvers::reynolds::GridParams::default().n_z
 }
 /// 1° of crank angle per step at a 360° cycle.
 fn default_time_steps() -> usize {
