@@ -318,8 +318,8 @@ pub enum InverseError {
     InvalidParameter { name: &'static str, value: f64 },
     /// The film cannot carry the load: the journal reached the wall.
     #[error(
-        "film collapse at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° (cycle {cycle}): |ε| = {eccentricity:.6}, ε = ({:.6}, {:.6}), h_min = {min_film_thickness:.3e} m, residual {residual:.3e}",
-        eccentricity_ratio[0], eccentricity_ratio[1]
+        "film collapse at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° ({phase}): |ε| = {eccentricity:.6}, ε = ({:.6}, {:.6}), h_min = {min_film_thickness:.3e} m, residual {residual:.3e}",
+        eccentricity_ratio[0], eccentricity_ratio[1], phase = CyclePhase(*cycle)
     )]
     Collapse {
         time: f64,
@@ -332,8 +332,8 @@ pub enum InverseError {
     },
     /// Newton did not converge in the step.
     #[error(
-        "Newton did not converge at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° (cycle {cycle}) after {iterations} iterations: residual {residual:.3e}, last ε = ({:.6}, {:.6})",
-        eccentricity_ratio[0], eccentricity_ratio[1]
+        "Newton did not converge at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° ({phase}) after {iterations} iterations: residual {residual:.3e}, last ε = ({:.6}, {:.6})",
+        eccentricity_ratio[0], eccentricity_ratio[1], phase = CyclePhase(*cycle)
     )]
     NewtonFailed {
         time: f64,
@@ -345,8 +345,8 @@ pub enum InverseError {
     },
     /// The film model failed at a trial ε.
     #[error(
-        "film model failed at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° (cycle {cycle}), trial ε = ({:.6}, {:.6}): {source}",
-        eccentricity_ratio[0], eccentricity_ratio[1]
+        "film model failed at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° ({phase}), trial ε = ({:.6}, {:.6}): {source}",
+        eccentricity_ratio[0], eccentricity_ratio[1], phase = CyclePhase(*cycle)
     )]
     Film {
         time: f64,
@@ -358,4 +358,43 @@ pub enum InverseError {
     /// The load history returned a non-finite value.
     #[error("non-finite {quantity} in the load history at t = {time:.6e} s")]
     NonFiniteLoad { quantity: &'static str, time: f64 },
+}
+
+/// How an error names the phase of the run: the run-in (cycle 0, at times t < 0 before the
+/// first load cycle, with the quasi-load still ramping up) or load cycle k.
+struct CyclePhase(usize);
+
+impl std::fmt::Display for CyclePhase {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0 {
+            0 => write!(f, "run-in before the first cycle, quasi-load ramping up"),
+            k => write!(f, "cycle {k}"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An error of the run-in says so instead of only showing a negative time and crank angle.
+    #[test]
+    fn errors_name_the_run_in() {
+        let at = |cycle| InverseError::NewtonFailed {
+            time: -8.24e-3,
+            crank_angle_deg: -89.0,
+            cycle,
+            iterations: 3,
+            residual: 0.5,
+            eccentricity_ratio: [0.1, 0.2],
+        };
+        assert!(
+            at(0)
+                .to_string()
+                .contains("(run-in before the first cycle, quasi-load ramping up)"),
+            "{}",
+            at(0)
+        );
+        assert!(at(2).to_string().contains("(cycle 2)"), "{}", at(2));
+    }
 }
