@@ -107,8 +107,8 @@ pub enum RunError {
     /// Writing the results failed.
     #[error(transparent)]
     Output(#[from] OutputError),
-    /// The output directory could not be made.
-    #[error("creating output directory '{}': {source}", path.display())]
+    /// The output directory could not be made or written to.
+    #[error("output directory '{}' is not usable: {source}", path.display())]
     OutputDir {
         /// The directory.
         path: PathBuf,
@@ -854,11 +854,15 @@ pub fn run_case_file(
     observer: &dyn RunObserver,
 ) -> Result<CaseOutcome, RunError> {
     let case = Case::from_file(path)?;
-    let report = solve_case(&case, observer)?;
-    std::fs::create_dir_all(out_dir).map_err(|source| RunError::OutputDir {
+    // The output directory is made and tried for writing before the solve, not found
+    // unusable after it.
+    let unusable = |source| RunError::OutputDir {
         path: out_dir.to_path_buf(),
         source,
-    })?;
+    };
+    std::fs::create_dir_all(out_dir).map_err(unusable)?;
+    tempfile::NamedTempFile::new_in(out_dir).map_err(unusable)?;
+    let report = solve_case(&case, observer)?;
     let mut files = Vec::new();
     for w in standard_writers() {
         if !case.output.plots && w.name() == "plots" {

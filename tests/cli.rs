@@ -373,6 +373,32 @@ fn a_duplicate_case_name_in_a_batch_fails_before_the_solve() {
     assert_eq!(summary.matches(",failed,").count(), 1, "{summary}");
 }
 
+/// An output directory that cannot be made is found before the solve, with its path
+/// (issue 12, item 8).
+#[test]
+fn an_unusable_output_directory_is_found_before_the_solve() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("a_file");
+    std::fs::write(&file, "not a directory").unwrap();
+    let out_dir = file.join("results");
+    let out = jbearing(&[
+        "run",
+        "cases/flores2006_mobility.toml",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    let stderr = text(&out.stderr);
+    assert!(
+        stderr.contains(&format!(
+            "output directory '{}' is not usable",
+            out_dir.display()
+        )),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("mobility: done"), "{stderr}");
+}
+
 /// `max_cycles = 1` (the documented minimum) keeps the solve: the file says that periodicity
 /// was not assessed instead of the run failing on a non-finite cycle-to-cycle change.
 #[test]
