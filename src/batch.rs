@@ -226,7 +226,13 @@ pub fn summary_csv(entries: &[BatchEntry]) -> String {
             }
             Ok(o) => {
                 for m in &o.report.methods {
-                    let _ = write!(s, "{},ok,{}", o.report.case_name, m.method);
+                    let _ = write!(
+                        s,
+                        "{},{},{}",
+                        o.report.case_name,
+                        method_status(m),
+                        m.method
+                    );
                     for (col, _) in COLUMNS {
                         let v = o
                             .report
@@ -249,7 +255,7 @@ pub fn summary_csv(entries: &[BatchEntry]) -> String {
 
 /// The summary as a fixed-width text table.
 pub fn summary_table(entries: &[BatchEntry]) -> String {
-    let mut s = format!("{:<26} {:<10} {:<8}", "case", "method", "status");
+    let mut s = format!("{:<26} {:<10} {:<14}", "case", "method", "status");
     for (_, h) in COLUMNS {
         let _ = write!(s, " {h:>20}");
     }
@@ -258,16 +264,16 @@ pub fn summary_table(entries: &[BatchEntry]) -> String {
         let name = case_stem(&e.path);
         match &e.result {
             Err(err) => {
-                let _ = writeln!(s, "{name:<26} {:<10} FAILED   {err}", "-");
+                let _ = writeln!(s, "{name:<26} {:<10} {:<14} {err}", "-", "FAILED");
             }
             Ok(o) => {
                 for m in &o.report.methods {
                     let _ = write!(
                         s,
-                        "{:<26} {:<10} {:<8}",
+                        "{:<26} {:<10} {:<14}",
                         o.report.case_name,
                         m.method.as_str(),
-                        "ok"
+                        method_status(m)
                     );
                     for (col, _) in COLUMNS {
                         let v = o
@@ -290,14 +296,41 @@ pub fn summary_table(entries: &[BatchEntry]) -> String {
                 if let Some(m) = rigorous_status(&o.report) {
                     let _ = writeln!(
                         s,
-                        "{:<26} {:<10} FAILED   {m}",
-                        o.report.case_name, "rigorous"
+                        "{:<26} {:<10} {:<14} {m}",
+                        o.report.case_name, "rigorous", "FAILED"
                     );
                 }
             }
         }
     }
     s
+}
+
+/// The status of one method's result: "ok", or what a user must know before trusting it —
+/// "not periodic" (the cycle limit was reached), "N stalled" (steps accepted above the Newton
+/// tolerance).
+pub fn method_status(m: &crate::output::MethodResult) -> String {
+    use crate::output::ParameterValue;
+    let info = |key: &str| m.solver_info.iter().find(|(k, _)| k == key).map(|(_, v)| v);
+    let mut notes = Vec::new();
+    if let Some(ParameterValue::Flag(false)) = info("periodic") {
+        notes.push("not periodic".to_string());
+    }
+    if let Some(ParameterValue::Integer(n)) = info("stalled_steps")
+        && *n > 0
+    {
+        notes.push(format!("{n} stalled"));
+    }
+    if notes.is_empty() {
+        "ok".into()
+    } else {
+        notes.join(", ")
+    }
+}
+
+/// Whether a report lacks a method that its case asked for (the method failed).
+pub fn has_failed_method(report: &crate::output::CaseReport) -> bool {
+    rigorous_status(report).is_some()
 }
 
 /// Why the rigorous method is missing from a report, if it failed.

@@ -154,6 +154,7 @@ pub fn main_with(cli: Cli) -> ExitCode {
                 for f in &o.files {
                     println!("wrote {}", f.display());
                 }
+                let method_failed = crate::batch::has_failed_method(&o.report);
                 let closed_form = o.report.closed_form.clone();
                 print!(
                     "{}",
@@ -165,7 +166,12 @@ pub fn main_with(cli: Cli) -> ExitCode {
                 if let Some(t) = &closed_form {
                     print!("{}", crate::closed_form_report::format_table(t));
                 }
-                ExitCode::SUCCESS
+                if method_failed {
+                    eprintln!("a requested method failed (the FAILED row above)");
+                    ExitCode::FAILURE
+                } else {
+                    ExitCode::SUCCESS
+                }
             }
             Err(e) => {
                 eprintln!("error: {e}");
@@ -195,8 +201,19 @@ pub fn main_with(cli: Cli) -> ExitCode {
             }
             println!("summary: {}", csv.display());
             let failed = entries.iter().filter(|e| e.result.is_err()).count();
-            if failed > 0 {
-                eprintln!("{failed} of {} case(s) failed", entries.len());
+            let method_failed = entries
+                .iter()
+                .filter(|e| {
+                    e.result
+                        .as_ref()
+                        .is_ok_and(|o| crate::batch::has_failed_method(&o.report))
+                })
+                .count();
+            if failed > 0 || method_failed > 0 {
+                eprintln!(
+                    "{failed} of {} case(s) failed, {method_failed} more with a failed method",
+                    entries.len()
+                );
                 ExitCode::FAILURE
             } else {
                 ExitCode::SUCCESS

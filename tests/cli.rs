@@ -400,7 +400,8 @@ fn an_unusable_output_directory_is_found_before_the_solve() {
 }
 
 /// `max_cycles = 1` (the documented minimum) keeps the solve: the file says that periodicity
-/// was not assessed instead of the run failing on a non-finite cycle-to-cycle change.
+/// was not assessed instead of the run failing on a non-finite cycle-to-cycle change, and the
+/// status column says "not periodic" instead of "ok".
 #[test]
 fn a_single_cycle_run_keeps_its_result() {
     let dir = tempfile::tempdir().unwrap();
@@ -426,6 +427,13 @@ fn a_single_cycle_run_keeps_its_result() {
         out_dir.to_str().unwrap(),
     ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
+    // The status column says what a user must know: one cycle is not a periodic orbit.
+    let stdout = text(&out.stdout);
+    let row = stdout
+        .lines()
+        .find(|l| l.starts_with("flores2006_mobility") && l.contains("rigorous"))
+        .unwrap_or_else(|| panic!("no rigorous row: {stdout}"));
+    assert!(row.contains("not periodic"), "{row}");
     let f = hdf5_metno::File::open(out_dir.join("flores2006_mobility.h5")).unwrap();
     let g = f.group("rigorous").unwrap();
     let cycles: i64 = g.attr("cycles").unwrap().read_scalar().unwrap();
