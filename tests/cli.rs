@@ -254,6 +254,28 @@ fn help_names_every_command() {
     }
 }
 
+/// The Flores mobility case with the rigorous method on, stepping the analytic short-bearing
+/// film, written into `dir` with its load table; `solver_extra` is appended to `[solver]`.
+fn flores_short_bearing_case(dir: &std::path::Path, solver_extra: &str) -> PathBuf {
+    let toml_text = std::fs::read_to_string(root().join("cases/flores2006_mobility.toml"))
+        .unwrap()
+        .replace("rigorous = false", "rigorous = true")
+        .replace(
+            "mobility_model = \"booker\"",
+            &format!(
+                "mobility_model = \"booker\"\nrigorous_film = \"short_bearing\"{solver_extra}"
+            ),
+        );
+    let case = dir.join("flores_inverse.toml");
+    std::fs::write(&case, toml_text).unwrap();
+    std::fs::copy(
+        root().join("cases/flores2006_load.csv"),
+        dir.join("flores2006_load.csv"),
+    )
+    .unwrap();
+    case
+}
+
 #[test]
 fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
     // Independent check of the rigorous-method wiring: the inverse solver stepping the analytic
@@ -263,20 +285,7 @@ fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
     // form approximates the short-bearing squeeze film (seed 000 eqs. 28-35) to a few per cent,
     // hence 5 %.
     let dir = tempfile::tempdir().unwrap();
-    let toml_text = std::fs::read_to_string(root().join("cases/flores2006_mobility.toml"))
-        .unwrap()
-        .replace("rigorous = false", "rigorous = true")
-        .replace(
-            "mobility_model = \"booker\"",
-            "mobility_model = \"booker\"\nrigorous_film = \"short_bearing\"",
-        );
-    let case = dir.path().join("flores_inverse.toml");
-    std::fs::write(&case, toml_text).unwrap();
-    std::fs::copy(
-        root().join("cases/flores2006_load.csv"),
-        dir.path().join("flores2006_load.csv"),
-    )
-    .unwrap();
+    let case = flores_short_bearing_case(dir.path(), "");
     let out_dir = dir.path().join("out");
     let out = jbearing(&[
         "run",
@@ -405,20 +414,7 @@ fn an_unusable_output_directory_is_found_before_the_solve() {
 #[test]
 fn a_single_cycle_run_keeps_its_result() {
     let dir = tempfile::tempdir().unwrap();
-    let toml_text = std::fs::read_to_string(root().join("cases/flores2006_mobility.toml"))
-        .unwrap()
-        .replace("rigorous = false", "rigorous = true")
-        .replace(
-            "mobility_model = \"booker\"",
-            "mobility_model = \"booker\"\nrigorous_film = \"short_bearing\"\nmax_cycles = 1",
-        );
-    let case = dir.path().join("flores_one_cycle.toml");
-    std::fs::write(&case, toml_text).unwrap();
-    std::fs::copy(
-        root().join("cases/flores2006_load.csv"),
-        dir.path().join("flores2006_load.csv"),
-    )
-    .unwrap();
+    let case = flores_short_bearing_case(dir.path(), "\nmax_cycles = 1");
     let out_dir = dir.path().join("out");
     let out = jbearing(&[
         "run",

@@ -23,6 +23,31 @@ struct Where {
     cycle: usize,
 }
 
+impl Where {
+    /// The film model failed at the trial `eps` of this step.
+    fn film_error(self, eccentricity_ratio: [f64; 2], source: FilmModelError) -> InverseError {
+        InverseError::Film {
+            time: self.time,
+            crank_angle_deg: self.crank_angle_deg,
+            cycle: self.cycle,
+            eccentricity_ratio,
+            source,
+        }
+    }
+
+    /// Newton could not converge this step.
+    fn newton_failed(self, iterations: usize, residual: f64, eps: [f64; 2]) -> InverseError {
+        InverseError::NewtonFailed {
+            time: self.time,
+            crank_angle_deg: self.crank_angle_deg,
+            cycle: self.cycle,
+            iterations,
+            residual,
+            eccentricity_ratio: eps,
+        }
+    }
+}
+
 /// Counters shared by all steps.
 #[derive(Default)]
 struct Stats {
@@ -529,13 +554,7 @@ impl<S: Clone> Orbit<S> {
             let again = film.step(&self.state, acc.eps, dt, &cond);
             film.set_capture_fields(false);
             stepper.stats.evaluations += 1;
-            let (resp, _) = again.map_err(|source| InverseError::Film {
-                time: at.time,
-                crank_angle_deg: at.crank_angle_deg,
-                cycle: at.cycle,
-                eccentricity_ratio: acc.eps,
-                source,
-            })?;
+            let (resp, _) = again.map_err(|source| at.film_error(acc.eps, source))?;
             resp.fields
         } else {
             None
@@ -646,25 +665,16 @@ impl Stepper<'_> {
                     stats.sweeps += resp.sweep_iterations;
                     let r = [resp.film_force[0] + w[0], resp.film_force[1] + w[1]];
                     if !(r[0].is_finite() && r[1].is_finite()) {
-                        return Err(InverseError::Film {
-                            time: at.time,
-                            crank_angle_deg: at.crank_angle_deg,
-                            cycle: at.cycle,
-                            eccentricity_ratio: eps,
-                            source: FilmModelError::NonFinite {
+                        return Err(at.film_error(
+                            eps,
+                            FilmModelError::NonFinite {
                                 quantity: "film force",
                             },
-                        });
+                        ));
                     }
                     Ok((resp, st, r))
                 }
-                Err(source) => Err(InverseError::Film {
-                    time: at.time,
-                    crank_angle_deg: at.crank_angle_deg,
-                    cycle: at.cycle,
-                    eccentricity_ratio: eps,
-                    source,
-                }),
+                Err(source) => Err(at.film_error(eps, source)),
             }
         };
         let collapse = |eps: [f64; 2], h: f64, res: f64| InverseError::Collapse {
@@ -689,14 +699,7 @@ impl Stepper<'_> {
          -> Result<Accepted<F::State>, InverseError> {
             stats.newton += iterations;
             if res > params.accept_tolerance {
-                return Err(InverseError::NewtonFailed {
-                    time: at.time,
-                    crank_angle_deg: at.crank_angle_deg,
-                    cycle: at.cycle,
-                    iterations,
-                    residual: res,
-                    eccentricity_ratio: eps,
-                });
+                return Err(at.newton_failed(iterations, res, eps));
             }
             stats.stalled += 1;
             stats.max_stalled = stats.max_stalled.max(res);
@@ -758,13 +761,7 @@ impl Stepper<'_> {
             };
             if let Some(m) = exact {
                 stats.jacobians += 1;
-                jac.m = m.map_err(|source| InverseError::Film {
-                    time: at.time,
-                    crank_angle_deg: at.crank_angle_deg,
-                    cycle: at.cycle,
-                    eccentricity_ratio: eps,
-                    source,
-                })?;
+                jac.m = m.map_err(|source| at.film_error(eps, source))?;
                 jac.valid = true;
                 fresh = true;
             } else if !jac.valid || params.jacobian == JacobianMethod::FiniteDifference {
@@ -784,14 +781,7 @@ impl Stepper<'_> {
             ];
             if !(det != 0.0 && delta[0].is_finite() && delta[1].is_finite()) {
                 if fresh {
-                    return Err(InverseError::NewtonFailed {
-                        time: at.time,
-                        crank_angle_deg: at.crank_angle_deg,
-                        cycle: at.cycle,
-                        iterations,
-                        residual: res,
-                        eccentricity_ratio: eps,
-                    });
+                    return Err(at.newton_failed(iterations, res, eps));
                 }
                 jac.valid = false;
                 continue;
