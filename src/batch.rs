@@ -1,5 +1,6 @@
-//! Batch runs: many cases in parallel (rayon), a progress bar per case (indicatif) showing the
-//! method, the cycle and the residual, and a summary table at the end (printed and as CSV).
+//! Batch runs: many cases in parallel (rayon), progress on stderr — a spinner line per case
+//! (indicatif) on a terminal, plain timestamped lines per method and cycle elsewhere (logs, CI,
+//! Slurm) — and a summary table at the end (printed and as CSV).
 //! A failing case is reported in the table and does not stop the others.
 //!
 //! ```text
@@ -12,11 +13,13 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 
+use crate::budget::Limits;
+use crate::case::CaseWarning;
 use crate::output::Method;
 use crate::run::{CaseOutcome, RunError, RunObserver, run_case_file};
 
@@ -54,11 +57,40 @@ pub fn collect_cases(inputs: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
     Ok(out)
 }
 
-struct BarObserver {
+/// How a batch shows its progress on stderr.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Progress {
+    /// Nothing but warnings (`--no-progress`, `--quiet`).
+    Hidden,
+    /// One live spinner line per case (stderr is a terminal).
+    Bars,
+    /// Plain lines, one per method start, cycle and end, with the elapsed time: for logs, CI,
+    /// `nohup` and Slurm, where a progress bar cannot draw.
+    Lines,
+}
+
+impl Progress {
+    /// Bars on a terminal, lines otherwise, nothing when `show` is false.
+    pub fn for_stderr(show: bool) -> Self {
+        use std::io::IsTerminal;
+        match (show, std::io::stderr().is_terminal()) {
+            (false, _) => Progress::Hidden,
+            (true, true) => Progress::Bars,
+            (true, false) => Progress::Lines,
+        }
+    }
+}
+
+/// The batch's [`RunObserver`]: updates the case's bar, or prints a line, and prints warnings
+/// (above the bars when they are drawn).
+struct ProgressObserver {
+    mode: Progress,
+    multi: MultiProgress,
+    started: Instant,
     bars: Mutex<Vec<(String, ProgressBar)>>,
 }
 
-impl BarObserver {
+impl ProgressObserver {
     fn with_bar(&self, case: &str, f: impl FnOnce(&ProgressBar)) {
         if let Some((_, b)) = self
             .bars
@@ -70,16 +102,35 @@ impl BarObserver {
             f(b);
         }
     }
+
+    /// Show `message` for `case`: on its bar, or as a line with the elapsed time.
+    fn event(&self, case: &str, message: String) {
+        match self.mode {
+            Progress::Hidden => {}
+            Progress::Bars => self.with_bar(case, |b| b.set_message(message)),
+            Progress::Lines => eprintln!(
+                "[{:>7.1} s] {case}: {message}",
+                self.started.elapsed().as_secs_f64()
+            ),
+        }
+    }
 }
 
-impl RunObserver for BarObserver {
+impl RunObserver for ProgressObserver {
     fn method_started(&self, case: &str, method: Method) {
-        self.with_bar(case, |b| b.set_message(format!("{method}: starting")));
+        self.event(case, format!("{method}: started"));
     }
     fn cycle_done(&self, case: &str, method: Method, cycle: usize, residual: f64) {
-        self.with_bar(case, |b| {
-            b.set_message(format!("{method}: cycle {cycle}, residual {residual:.2e}"))
-        });
+        let what = match method {
+            Method::Rigorous => "|Δε| from the previous cycle",
+            Method::Mobility => "periodicity change",
+        };
+        let message = if residual.is_finite() {
+            format!("{method}: cycle {cycle} done, {what} {residual:.2e}")
+        } else {
+            format!("{method}: cycle {cycle} done")
+        };
+        self.event(case, message);
     }
     fn progress(
         &self,
@@ -90,68 +141,74 @@ impl RunObserver for BarObserver {
         steps: usize,
         residual: f64,
     ) {
-        let phase = if cycle == 0 {
-            "run-in".to_string()
-        } else {
-            format!("cycle {cycle}")
-        };
-        self.with_bar(case, |b| {
-            b.set_message(format!(
-                "{method}: {phase}, step {step}/{steps}, residual {residual:.2e}"
-            ))
-        });
+        // Per-step news only on a bar (a line per step would flood a log; -vv logs them).
+        if self.mode == Progress::Bars {
+            let phase = if cycle == 0 {
+                "run-in".to_string()
+            } else {
+                format!("cycle {cycle}")
+            };
+            self.with_bar(case, |b| {
+                b.set_message(format!(
+                    "{method}: {phase}, step {step}/{steps}, residual {residual:.2e}"
+                ))
+            });
+        }
     }
     fn method_done(&self, case: &str, method: Method) {
-        self.with_bar(case, |b| b.set_message(format!("{method}: done")));
+        self.event(case, format!("{method}: done"));
+    }
+    fn warning(&self, _case: &str, warning: &CaseWarning) {
+        let line = format!("warning: {warning}");
+        if self.mode == Progress::Bars {
+            self.multi.suspend(|| eprintln!("{line}"));
+        } else {
+            eprintln!("{line}");
+        }
     }
 }
 
 /// Run every case in `paths` with up to `jobs` threads (0 = all cores), writing into `out_dir`.
 /// More threads than cases (or than cores, when `jobs` asks for more) would only wait: the
-/// pool gets at most min(cases, cores) threads, whatever `jobs` says.
-/// Progress bars go to stderr when `progress` is true. Returns one entry per case, in order.
+/// pool gets at most min(cases, cores) threads, whatever `jobs` says. Cases estimated above
+/// `limits` fail before their solve. Progress goes to stderr as `progress` says; warnings
+/// always do. Returns one entry per case, in order.
 pub fn run_batch(
     paths: &[PathBuf],
     out_dir: &Path,
     jobs: usize,
-    progress: bool,
+    progress: Progress,
+    limits: &Limits,
 ) -> Vec<BatchEntry> {
-    let multi = MultiProgress::with_draw_target(if progress {
+    let multi = MultiProgress::with_draw_target(if progress == Progress::Bars {
         ProgressDrawTarget::stderr()
     } else {
         ProgressDrawTarget::hidden()
     });
     let style = ProgressStyle::with_template("{spinner} {prefix:24} {elapsed:>4} {wide_msg}")
         .expect("static template");
-    let observer = BarObserver {
+    let observer = ProgressObserver {
+        mode: progress,
+        multi: multi.clone(),
+        started: Instant::now(),
         bars: Mutex::new(Vec::new()),
     };
-    let mut bars = Vec::new();
-    for p in paths {
-        let name = case_stem(p);
-        let bar = multi.add(ProgressBar::new_spinner());
-        bar.set_style(style.clone());
-        bar.set_prefix(name.clone());
-        bar.set_message("queued");
-        bar.enable_steady_tick(Duration::from_millis(200));
-        bars.push(bar.clone());
-        observer
-            .bars
-            .lock()
-            .expect("progress bars")
-            .push((name, bar));
-    }
-    // Cases whose name an earlier case of the batch already has would overwrite its files:
-    // they fail before any solve, naming the earlier file (a case file that cannot be read
-    // fails later with its own error).
-    let mut first_with_name: std::collections::HashMap<String, &PathBuf> =
+    // The name each case goes by in the progress (its `name`, or its file stem when the file
+    // cannot be read), and which cases repeat an earlier case's name: those would overwrite its
+    // files, so they fail before any solve, naming the earlier file.
+    let names: Vec<Option<String>> = paths
+        .iter()
+        .map(|p| crate::case::Case::from_file(p).ok().map(|c| c.name))
+        .collect();
+    let mut first_with_name: std::collections::HashMap<&str, &PathBuf> =
         std::collections::HashMap::new();
     let duplicate_of: Vec<Option<(String, PathBuf)>> = paths
         .iter()
-        .map(|p| {
-            let name = crate::case::Case::from_file(p).ok()?.name;
-            match first_with_name.get(&name) {
-                Some(other) => Some((name, (*other).clone())),
+        .zip(&names)
+        .map(|(p, name)| {
+            let name = name.as_deref()?;
+            match first_with_name.get(name) {
+                Some(other) => Some((name.to_string(), (*other).clone())),
                 None => {
                     first_with_name.insert(name, p);
                     None
@@ -159,6 +216,23 @@ pub fn run_batch(
             }
         })
         .collect();
+    let mut bars = Vec::new();
+    for (p, name) in paths.iter().zip(&names) {
+        let name = name.clone().unwrap_or_else(|| case_stem(p));
+        let bar = multi.add(ProgressBar::new_spinner());
+        bar.set_style(style.clone());
+        bar.set_prefix(name.clone());
+        bar.set_message("queued");
+        if progress == Progress::Bars {
+            bar.enable_steady_tick(Duration::from_millis(200));
+        }
+        bars.push((name.clone(), bar.clone()));
+        observer
+            .bars
+            .lock()
+            .expect("progress bars")
+            .push((name, bar));
+    }
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let threads = if jobs == 0 { cores } else { jobs.min(cores) };
     let pool = rayon::ThreadPoolBuilder::new()
@@ -170,7 +244,7 @@ pub fn run_batch(
             .par_iter()
             .zip(bars.par_iter())
             .zip(duplicate_of.par_iter())
-            .map(|((p, bar), duplicate)| {
+            .map(|((p, (name, bar)), duplicate)| {
                 bar.set_message("reading the case");
                 let result = match duplicate {
                     Some((name, other)) => Err(RunError::DuplicateName {
@@ -178,11 +252,19 @@ pub fn run_batch(
                         path: p.display().to_string(),
                         other: other.display().to_string(),
                     }),
-                    None => run_case_file(p, out_dir, &observer),
+                    None => run_case_file(p, out_dir, limits, &observer),
                 };
                 match &result {
-                    Ok(o) => bar.finish_with_message(format!("done, {} files", o.files.len())),
-                    Err(e) => bar.finish_with_message(format!("FAILED: {e}")),
+                    Ok(o) => {
+                        let message = format!("done, {} files", o.files.len());
+                        observer.event(name, message.clone());
+                        bar.finish_with_message(message);
+                    }
+                    Err(e) => {
+                        let message = format!("FAILED: {e}");
+                        observer.event(name, message.clone());
+                        bar.finish_with_message(message);
+                    }
                 }
                 BatchEntry {
                     path: p.clone(),
@@ -211,28 +293,38 @@ fn scale(name: &str) -> f64 {
     }
 }
 
-/// The summary as CSV text: one row per case and method, failed cases with their message.
+/// The summary as CSV text (RFC 4180, through the `csv` crate): one row per case and method,
+/// failed cases and failed methods with their message.
 pub fn summary_csv(entries: &[BatchEntry]) -> String {
-    let mut s = String::from(
-        "case,status,method,min_film_thickness_min_m,side_leakage_mean_m3_s,power_loss_mean_w,\
-         eccentricity_ratio_max,message\n",
-    );
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let header = [
+        "case",
+        "status",
+        "method",
+        "min_film_thickness_min_m",
+        "side_leakage_mean_m3_s",
+        "power_loss_mean_w",
+        "eccentricity_ratio_max",
+        "message",
+    ];
+    // Writing into a Vec cannot fail; a failure here would be a bug in the csv crate.
+    let mut row = |cells: Vec<String>| w.write_record(&cells).expect("CSV into memory");
+    row(header.iter().map(|h| h.to_string()).collect());
     for e in entries {
-        let name = case_stem(&e.path);
         match &e.result {
             Err(err) => {
-                let msg = err.to_string().replace('"', "'");
-                let _ = writeln!(s, "{name},failed,,,,,,\"{msg}\"");
+                let mut cells = vec![case_stem(&e.path), "failed".into()];
+                cells.extend(std::iter::repeat_n(String::new(), 5));
+                cells.push(err.to_string());
+                row(cells);
             }
             Ok(o) => {
                 for m in &o.report.methods {
-                    let _ = write!(
-                        s,
-                        "{},{},{}",
-                        o.report.case_name,
+                    let mut cells = vec![
+                        o.report.case_name.clone(),
                         method_status(m),
-                        m.method
-                    );
+                        m.method.to_string(),
+                    ];
                     for (col, _) in COLUMNS {
                         let v = o
                             .report
@@ -240,17 +332,22 @@ pub fn summary_csv(entries: &[BatchEntry]) -> String {
                             .iter()
                             .find(|r| r.name == col)
                             .and_then(|r| r.value(m.method));
-                        let _ = write!(s, ",{}", v.map(|v| format!("{v:.6e}")).unwrap_or_default());
+                        cells.push(v.map(|v| format!("{v:.6e}")).unwrap_or_default());
                     }
-                    let note = rigorous_status(&o.report)
-                        .map(|m| format!("rigorous {}", m.replace('"', "'")))
-                        .unwrap_or_default();
-                    let _ = writeln!(s, ",\"{note}\"");
+                    cells.push(String::new());
+                    row(cells);
+                }
+                for (method, message) in method_failures(&o.report) {
+                    let mut cells =
+                        vec![o.report.case_name.clone(), "failed".into(), method.into()];
+                    cells.extend(std::iter::repeat_n(String::new(), 4));
+                    cells.push(message.to_string());
+                    row(cells);
                 }
             }
         }
     }
-    s
+    String::from_utf8(w.into_inner().expect("CSV into memory")).expect("UTF-8 in, UTF-8 out")
 }
 
 /// The summary as a fixed-width text table.
@@ -293,11 +390,11 @@ pub fn summary_table(entries: &[BatchEntry]) -> String {
                     }
                     s.push('\n');
                 }
-                if let Some(m) = rigorous_status(&o.report) {
+                for (method, message) in method_failures(&o.report) {
                     let _ = writeln!(
                         s,
-                        "{:<26} {:<10} {:<14} {m}",
-                        o.report.case_name, "rigorous", "FAILED"
+                        "{:<26} {:<10} {:<14} {message}",
+                        o.report.case_name, method, "FAILED"
                     );
                 }
             }
@@ -306,41 +403,20 @@ pub fn summary_table(entries: &[BatchEntry]) -> String {
     s
 }
 
-/// The status of one method's result: "ok", or what a user must know before trusting it —
-/// "not periodic" (the cycle limit was reached), "N stalled" (steps accepted above the Newton
-/// tolerance).
+/// The status of one method's result (see [`crate::output::MethodResult::status`]).
 pub fn method_status(m: &crate::output::MethodResult) -> String {
-    use crate::output::ParameterValue;
-    let info = |key: &str| m.solver_info.iter().find(|(k, _)| k == key).map(|(_, v)| v);
-    let mut notes = Vec::new();
-    if let Some(ParameterValue::Flag(false)) = info("periodic") {
-        notes.push("not periodic".to_string());
-    }
-    if let Some(ParameterValue::Integer(n)) = info("stalled_steps")
-        && *n > 0
-    {
-        notes.push(format!("{n} stalled"));
-    }
-    if notes.is_empty() {
-        "ok".into()
-    } else {
-        notes.join(", ")
-    }
+    m.status()
 }
 
 /// Whether a report lacks a method that its case asked for (the method failed).
 pub fn has_failed_method(report: &crate::output::CaseReport) -> bool {
-    rigorous_status(report).is_some()
+    !method_failures(report).is_empty()
 }
 
-/// Why the rigorous method is missing from a report, if it failed.
-fn rigorous_status(report: &crate::output::CaseReport) -> Option<&str> {
-    report
-        .parameters
-        .iter()
-        .find(|p| p.key == crate::run::RIGOROUS_STATUS)
-        .and_then(|p| match &p.value {
-            crate::output::ParameterValue::Text(t) => Some(t.as_str()),
-            _ => None,
-        })
+/// The methods missing from a report because they failed, with the failure's message.
+pub fn method_failures(report: &crate::output::CaseReport) -> Vec<(&'static str, &str)> {
+    Method::ALL
+        .into_iter()
+        .filter_map(|m| report.failure(m).map(|why| (m.as_str(), why)))
+        .collect()
 }

@@ -3,12 +3,14 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use std::io::IsTerminal;
+
 use clap::{Args, Parser, Subcommand};
 
-use crate::batch::{collect_cases, run_batch, summary_csv, summary_table};
+use crate::batch::{Progress, collect_cases, run_batch, summary_csv, summary_table};
+use crate::budget::{Limits, estimate, human_bytes, human_seconds};
 use crate::case::Case;
 use crate::case::compressor::Compressor;
-use crate::run::{Quiet, run_case_file};
 
 /// Dynamically loaded journal bearings with mass-conserving (JFO) cavitation.
 ///
@@ -43,11 +45,19 @@ pub enum Command {
     Run(RunArgs),
     /// Solve many cases in parallel; a failing case does not stop the others.
     Batch(BatchArgs),
-    /// Check case files without solving (errors name the file, key and line).
+    /// Check case files without solving: every key, table and precondition (errors name the
+    /// file, key and line), the estimated memory and time against the limits, duplicate case
+    /// names, and with --out the output directory.
     Check {
         /// Case files to check.
         #[arg(required = true)]
         cases: Vec<PathBuf>,
+        /// Also make this output directory and try writing into it.
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+        /// Limits on the estimated cost of a case.
+        #[command(flatten)]
+        budget: BudgetArgs,
     },
     /// Print the static equilibrium of the closed-form film models (short / long bearing,
     /// Sommerfeld / Gumbel, Pinkus–Sternlicht) under the case's constant or cycle-mean load,
@@ -75,6 +85,24 @@ pub enum Command {
     },
 }
 
+/// Limits on the estimated cost of one case (see `jbearing::budget`): a case estimated above
+/// either is refused before its solve; above 1 GB or 1 hour it gets a warning.
+#[derive(Debug, Clone, Copy, Args)]
+pub struct BudgetArgs {
+    /// Refuse a case estimated to need more memory than this (GiB).
+    #[arg(long, default_value_t = 8.0, value_name = "GIB")]
+    pub max_memory_gb: f64,
+    /// Refuse a case estimated to take longer than this (hours, one core).
+    #[arg(long, default_value_t = 24.0, value_name = "HOURS")]
+    pub max_hours: f64,
+}
+
+impl BudgetArgs {
+    fn limits(&self) -> Limits {
+        Limits::from_gib_hours(self.max_memory_gb, self.max_hours)
+    }
+}
+
 /// `jbearing run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
@@ -83,6 +111,12 @@ pub struct RunArgs {
     /// Output directory (created if missing).
     #[arg(short, long, default_value = "results")]
     pub out: PathBuf,
+    /// No progress on stderr (warnings and errors are still printed).
+    #[arg(long)]
+    pub no_progress: bool,
+    /// Limits on the estimated cost of the case.
+    #[command(flatten)]
+    pub budget: BudgetArgs,
 }
 
 /// `jbearing batch`.
@@ -97,9 +131,12 @@ pub struct BatchArgs {
     /// Output directory (created if missing); the summary goes to OUT/batch_summary.csv.
     #[arg(short, long, default_value = "results")]
     pub out: PathBuf,
-    /// No progress bars.
+    /// No progress on stderr (warnings and errors are still printed).
     #[arg(long)]
     pub no_progress: bool,
+    /// Limits on the estimated cost of each case.
+    #[command(flatten)]
+    pub budget: BudgetArgs,
 }
 
 fn init_logging(verbose: u8, quiet: bool) {
@@ -115,8 +152,11 @@ fn init_logging(verbose: u8, quiet: bool) {
     };
     let filter = tracing_subscriber::EnvFilter::try_from_default_env()
         .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new(level));
+    // Colour only on a terminal, and never with NO_COLOR set (https://no-color.org).
+    let ansi = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
     let _ = tracing_subscriber::fmt()
         .with_env_filter(filter)
+        .with_ansi(ansi)
         .with_writer(std::io::stderr)
         .try_init();
 }
@@ -125,59 +165,48 @@ fn init_logging(verbose: u8, quiet: bool) {
 pub fn main_with(cli: Cli) -> ExitCode {
     init_logging(cli.verbose, cli.quiet);
     match cli.command {
-        Command::Check { cases } => {
-            let mut bad = 0;
-            for c in &cases {
-                match Case::from_file(c) {
-                    Ok(case) => println!(
-                        "{}: ok (case '{}', {} groove(s), grid {} × {})",
-                        c.display(),
-                        case.name,
-                        case.grooves.len(),
-                        case.n_theta,
-                        case.n_z
-                    ),
-                    Err(e) => {
-                        eprintln!("error: {e}");
-                        bad += 1;
+        Command::Check { cases, out, budget } => check(&cases, out.as_deref(), &budget.limits()),
+        Command::Run(a) => {
+            // The same progress and warnings as a batch of one.
+            let progress = Progress::for_stderr(!a.no_progress && !cli.quiet);
+            let mut entries = run_batch(
+                std::slice::from_ref(&a.case),
+                &a.out,
+                1,
+                progress,
+                &a.budget.limits(),
+            );
+            let entry = entries.remove(0);
+            match entry.result {
+                Ok(o) => {
+                    for f in &o.files {
+                        println!("wrote {}", f.display());
+                    }
+                    let method_failed = crate::batch::has_failed_method(&o.report);
+                    let closed_form = o.report.closed_form.clone();
+                    print!(
+                        "{}",
+                        summary_table(&[crate::batch::BatchEntry {
+                            path: a.case.clone(),
+                            result: Ok(o),
+                        }])
+                    );
+                    if let Some(t) = &closed_form {
+                        print!("{}", crate::closed_form_report::format_table(t));
+                    }
+                    if method_failed {
+                        eprintln!("a requested method failed (the FAILED row above)");
+                        ExitCode::FAILURE
+                    } else {
+                        ExitCode::SUCCESS
                     }
                 }
-            }
-            if bad > 0 {
-                ExitCode::FAILURE
-            } else {
-                ExitCode::SUCCESS
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
             }
         }
-        Command::Run(a) => match run_case_file(&a.case, &a.out, &Quiet) {
-            Ok(o) => {
-                for f in &o.files {
-                    println!("wrote {}", f.display());
-                }
-                let method_failed = crate::batch::has_failed_method(&o.report);
-                let closed_form = o.report.closed_form.clone();
-                print!(
-                    "{}",
-                    summary_table(&[crate::batch::BatchEntry {
-                        path: a.case.clone(),
-                        result: Ok(o),
-                    }])
-                );
-                if let Some(t) = &closed_form {
-                    print!("{}", crate::closed_form_report::format_table(t));
-                }
-                if method_failed {
-                    eprintln!("a requested method failed (the FAILED row above)");
-                    ExitCode::FAILURE
-                } else {
-                    ExitCode::SUCCESS
-                }
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::FAILURE
-            }
-        },
         Command::Batch(a) => {
             let paths = match collect_cases(&a.inputs) {
                 Ok(p) if !p.is_empty() => p,
@@ -190,12 +219,25 @@ pub fn main_with(cli: Cli) -> ExitCode {
                     return ExitCode::FAILURE;
                 }
             };
-            let entries = run_batch(&paths, &a.out, a.jobs, !a.no_progress && !cli.quiet);
+            let progress = Progress::for_stderr(!a.no_progress && !cli.quiet);
+            let entries = run_batch(&paths, &a.out, a.jobs, progress, &a.budget.limits());
             print!("{}", summary_table(&entries));
             let csv = a.out.join("batch_summary.csv");
-            if let Err(e) = std::fs::create_dir_all(&a.out)
-                .and_then(|_| std::fs::write(&csv, summary_csv(&entries)))
-            {
+            let written = std::fs::create_dir_all(&a.out)
+                .map_err(|e| e.to_string())
+                .and_then(|_| {
+                    crate::output::write_atomically(&csv, |tmp| {
+                        std::fs::write(tmp, summary_csv(&entries)).map_err(|source| {
+                            crate::output::OutputError::Io {
+                                action: "writing",
+                                path: csv.clone(),
+                                source,
+                            }
+                        })
+                    })
+                    .map_err(|e| e.to_string())
+                });
+            if let Err(e) = written {
                 eprintln!("error: writing {}: {e}", csv.display());
                 return ExitCode::FAILURE;
             }
@@ -254,5 +296,72 @@ pub fn main_with(cli: Cli) -> ExitCode {
                 ExitCode::FAILURE
             }
         },
+    }
+}
+
+/// `jbearing check`: every case read and checked as `run` would before its solve; the estimated
+/// cost printed beside each; duplicate names, and the output directory when given.
+fn check(cases: &[PathBuf], out: Option<&std::path::Path>, limits: &Limits) -> ExitCode {
+    let mut bad = 0;
+    if let Some(dir) = out {
+        let usable = std::fs::create_dir_all(dir)
+            .and_then(|_| tempfile::NamedTempFile::new_in(dir).map(drop));
+        if let Err(e) = usable {
+            eprintln!(
+                "error: output directory '{}' is not usable: {e}",
+                dir.display()
+            );
+            bad += 1;
+        }
+    }
+    let mut seen: std::collections::HashMap<String, PathBuf> = std::collections::HashMap::new();
+    for c in cases {
+        let case = match Case::from_file(c) {
+            Ok(case) => case,
+            Err(e) => {
+                eprintln!("error: {e}");
+                bad += 1;
+                continue;
+            }
+        };
+        if let Some(other) = seen.get(&case.name) {
+            eprintln!(
+                "error: {}: case name '{}' is already used by {}: their output files would \
+                 overwrite each other in one batch (give each case its own name)",
+                c.display(),
+                case.name,
+                other.display()
+            );
+            bad += 1;
+            continue;
+        }
+        seen.insert(case.name.clone(), c.clone());
+        let budget = match crate::budget::check(&case, limits) {
+            Ok(w) => w,
+            Err(e) => {
+                eprintln!("error: {e}");
+                bad += 1;
+                continue;
+            }
+        };
+        for w in case.warnings.iter().chain(&budget) {
+            eprintln!("warning: {w}");
+        }
+        let e = estimate(&case);
+        println!(
+            "{}: ok (case '{}', {} groove(s), grid {} × {}; estimated {}, {})",
+            c.display(),
+            case.name,
+            case.grooves.len(),
+            case.n_theta,
+            case.n_z,
+            human_bytes(e.memory_bytes),
+            human_seconds(e.seconds)
+        );
+    }
+    if bad > 0 {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
     }
 }

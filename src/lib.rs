@@ -4,13 +4,15 @@
 //! - [`case`]: TOML case files (schema, units, histories from CSV, errors with file/key/line),
 //!   and the compressor machine file behind `jbearing synth-loads`.
 //! - [`run`]: one case through each method into a [`output::CaseReport`].
-//! - [`batch`]: many cases in parallel with progress bars and a summary table.
+//! - [`batch`]: many cases in parallel with progress (bars or lines) and a summary table.
+//! - [`budget`]: a case's estimated memory and time, against the limits.
 //! - [`cli`]: the `jbearing` command line.
 //! - [`closed_form_report`]: the closed-form static-equilibrium table of a case.
 //! - [`output`]: the writers (HDF5, plots, CSV summary).
 //! - [`validate`]: `jbearing validate`, the validation cases against their published values.
 
 pub mod batch;
+pub mod budget;
 pub mod case;
 pub mod cli;
 pub mod closed_form_report;

@@ -19,18 +19,19 @@ use jbearing_solvers::mobility::{
 };
 
 use jbearing_solvers::inverse::{
-    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, ReynoldsFilm,
-    ShortBearingFilm, ShortBearingParams, solve_inverse,
+    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, InverseWarning,
+    ReynoldsFilm, ShortBearingFilm, ShortBearingParams, solve_inverse,
 };
 use jbearing_solvers::load::LoadHistory;
 use jbearing_solvers::reynolds::{GridParams, Groove as ReynoldsGroove, ReynoldsParams};
 use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
 use ndarray::Array3;
 
-use crate::case::{Case, CaseError, MobilityModelChoice, RigorousFilm};
+use crate::budget::{self, BudgetError, Limits};
+use crate::case::{Case, CaseError, CaseWarning, MobilityModelChoice, RigorousFilm};
 use crate::output::{
     CaseReport, Field, FieldSnapshots, Method, MethodResult, OutputError, Parameter,
-    ParameterValue, Reduction, RunInfo, Series, SummaryRow, names, standard_writers,
+    ParameterValue, Reduction, ReportWarning, RunInfo, Series, SummaryRow, names, standard_writers,
 };
 
 /// Progress of one case, for progress bars and logs. Every method has a default that does
@@ -53,6 +54,8 @@ pub trait RunObserver: Sync {
     }
     /// A method finished.
     fn method_done(&self, _case: &str, _method: Method) {}
+    /// A warning about the case (before the solve).
+    fn warning(&self, _case: &str, _warning: &CaseWarning) {}
 }
 
 /// An observer that ignores everything.
@@ -104,6 +107,26 @@ pub enum RunError {
         /// The solver's error.
         message: String,
     },
+    /// Every method the case asked for failed.
+    #[error("case '{case}': every method failed: {}", messages.join("; "))]
+    AllMethodsFailed {
+        /// Case name.
+        case: String,
+        /// Each method's error.
+        messages: Vec<String>,
+    },
+    /// The case asks for no method (the case file's check refuses this; kept for callers that
+    /// build a [`Case`] by hand).
+    #[error(
+        "case '{case}': no method requested (methods.rigorous and methods.mobility are both false)"
+    )]
+    NoMethod {
+        /// Case name.
+        case: String,
+    },
+    /// The case's estimated cost is above the limits.
+    #[error(transparent)]
+    Budget(#[from] BudgetError),
     /// Writing the results failed.
     #[error(transparent)]
     Output(#[from] OutputError),
@@ -139,10 +162,7 @@ pub struct CaseOutcome {
 pub fn run_rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodResult, RunError> {
     let params = inverse_params(case);
     let history = CaseHistory::new(case);
-    let mut adapter = InverseAdapter {
-        case: &case.name,
-        observer,
-    };
+    let mut adapter = InverseAdapter::new(&case.name, observer);
     let fail = |message: String| RunError::Rigorous {
         case: case.name.clone(),
         message,
@@ -184,7 +204,9 @@ pub fn run_rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
 }
 
 /// Key of the report parameter that says why the rigorous method is missing (it failed).
-pub const RIGOROUS_STATUS: &str = "rigorous_status";
+pub const RIGOROUS_STATUS: &str = Method::Rigorous.failure_key();
+/// Key of the report parameter that says why the mobility method is missing (it failed).
+pub const MOBILITY_STATUS: &str = Method::Mobility.failure_key();
 
 /// The Reynolds (JFO) film parameters of the case, handed to [`ReynoldsFilm`] by
 /// [`run_rigorous`].
@@ -286,19 +308,56 @@ impl LoadHistory for CaseHistory<'_> {
     }
 }
 
-/// Passes the inverse solver's progress on to a [`RunObserver`].
+/// Passes the inverse solver's progress on to a [`RunObserver`], and logs it: a summary per
+/// cycle at `-v` (info: |Δε|, |Δφ|, steps, Newton iterations, worst residual), every step at
+/// `-vv` (debug).
 struct InverseAdapter<'a> {
     case: &'a str,
     observer: &'a dyn RunObserver,
+    /// Newton iterations, steps and the largest step residual since the last cycle ended.
+    newton_iterations: usize,
+    steps: usize,
+    worst_residual: f64,
+}
+
+impl<'a> InverseAdapter<'a> {
+    fn new(case: &'a str, observer: &'a dyn RunObserver) -> Self {
+        Self {
+            case,
+            observer,
+            newton_iterations: 0,
+            steps: 0,
+            worst_residual: 0.0,
+        }
+    }
 }
 
 impl InverseObserver for InverseAdapter<'_> {
     fn on_step(&mut self, p: &InverseProgress) {
+        self.newton_iterations += p.newton_iterations;
+        self.steps += 1;
+        self.worst_residual = self.worst_residual.max(p.residual);
+        let cycle = match p.phase {
+            InversePhase::RunIn => 0,
+            InversePhase::Cycle(k) => k,
+        };
+        tracing::debug!(
+            case = self.case,
+            "rigorous: {} step {}/{}, crank angle {:.1}°, ε = {:.4}, {} Newton iterations, \
+             residual {:.2e}",
+            if cycle == 0 {
+                "run-in".to_string()
+            } else {
+                format!("cycle {cycle}")
+            },
+            p.step,
+            p.steps,
+            p.crank_angle_deg,
+            p.eccentricity_ratio[0].hypot(p.eccentricity_ratio[1]),
+            p.newton_iterations,
+            p.residual
+        );
         if p.step.is_multiple_of(10) || p.step == p.steps {
-            let cycle = match p.phase {
-                InversePhase::RunIn => 0,
-                InversePhase::Cycle(k) => k,
-            };
             self.observer.progress(
                 self.case,
                 Method::Rigorous,
@@ -309,7 +368,19 @@ impl InverseObserver for InverseAdapter<'_> {
             );
         }
     }
-    fn on_cycle(&mut self, cycle: usize, eccentricity_change: f64, _film: f64) {
+    fn on_cycle(&mut self, cycle: usize, eccentricity_change: f64, film: f64) {
+        tracing::info!(
+            case = self.case,
+            "rigorous: cycle {cycle}: |Δε| = {eccentricity_change:.2e}, |Δφ| = {film:.2e}, {} \
+             steps, {} Newton iterations ({:.2} per step), worst step residual {:.2e}",
+            self.steps,
+            self.newton_iterations,
+            self.newton_iterations as f64 / self.steps.max(1) as f64,
+            self.worst_residual
+        );
+        self.newton_iterations = 0;
+        self.steps = 0;
+        self.worst_residual = 0.0;
         self.observer
             .cycle_done(self.case, Method::Rigorous, cycle, eccentricity_change);
     }
@@ -465,12 +536,24 @@ pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> Me
                 "split_steps".into(),
                 ParameterValue::Integer(info.split_steps as i64),
             ),
+            // The warning as a typed value: a code ("" or "not_periodic"; the numbers are the
+            // attributes above) and its message.
             (
                 "warning".into(),
                 ParameterValue::Text(
+                    match &info.warning {
+                        None => "",
+                        Some(InverseWarning::NotPeriodic { .. }) => "not_periodic",
+                    }
+                    .into(),
+                ),
+            ),
+            (
+                "warning_message".into(),
+                ParameterValue::Text(
                     info.warning
                         .as_ref()
-                        .map_or_else(String::new, |w| format!("{w:?}")),
+                        .map_or_else(String::new, ToString::to_string),
                 ),
             ),
         ],
@@ -807,29 +890,73 @@ pub fn summary_rows(methods: &[MethodResult]) -> Vec<SummaryRow> {
 }
 
 /// Solve the case with the methods it asks for and build its report (nothing is written).
+///
+/// Each method's result survives the other's failure: a failed method leaves a
+/// [`RIGOROUS_STATUS`] / [`MOBILITY_STATUS`] parameter ("failed: …") in the report, and the
+/// case fails only when every method it asked for failed.
 pub fn solve_case(case: &Case, observer: &dyn RunObserver) -> Result<CaseReport, RunError> {
+    solve_case_with(case, observer, run_rigorous, run_mobility)
+}
+
+/// A method's solver, as [`solve_case_with`] calls it.
+type MethodSolver = fn(&Case, &dyn RunObserver) -> Result<MethodResult, RunError>;
+
+/// [`solve_case`] with the two methods' solvers given (tests inject failures here).
+fn solve_case_with(
+    case: &Case,
+    observer: &dyn RunObserver,
+    rigorous: MethodSolver,
+    mobility: MethodSolver,
+) -> Result<CaseReport, RunError> {
     let started = now_utc();
     let t0 = Instant::now();
     let mut methods = Vec::new();
+    let mut failures = Vec::new();
     let mut parameters = case.parameters();
-    if case.methods.rigorous {
-        match run_rigorous(case, observer) {
+    let requested = [
+        (
+            case.methods.rigorous,
+            rigorous,
+            RIGOROUS_STATUS,
+            Method::Rigorous,
+        ),
+        (
+            case.methods.mobility,
+            mobility,
+            MOBILITY_STATUS,
+            Method::Mobility,
+        ),
+    ];
+    for (asked, solve, status_key, method) in requested {
+        if !asked {
+            continue;
+        }
+        match solve(case, observer) {
             Ok(r) => methods.push(r),
-            // The mobility answer is still worth writing: keep it, and say in the file (and the
-            // batch summary) why the rigorous one is missing. Without mobility the case fails.
-            Err(err) if case.methods.mobility => {
-                tracing::error!(case = %case.name, "rigorous method failed: {err}");
+            Err(err) => {
+                // Keep what the other method found, and say in the file (and the summaries)
+                // why this one is missing.
+                tracing::error!(case = %case.name, "{method} method failed: {err}");
                 parameters.push(Parameter::text(
-                    RIGOROUS_STATUS,
+                    status_key,
                     &format!("failed: {err}"),
-                    "why the rigorous method is absent from this file",
+                    &format!("why the {method} method is absent from this file"),
                 ));
+                failures.push(err);
             }
-            Err(err) => return Err(err),
         }
     }
-    if case.methods.mobility {
-        methods.push(run_mobility(case, observer)?);
+    if methods.is_empty() {
+        return Err(match failures.len() {
+            0 => RunError::NoMethod {
+                case: case.name.clone(),
+            },
+            1 => failures.remove(0),
+            _ => RunError::AllMethodsFailed {
+                case: case.name.clone(),
+                messages: failures.iter().map(ToString::to_string).collect(),
+            },
+        });
     }
     let summary = summary_rows(&methods);
     let closed_form = crate::closed_form_report::report_table(case, &methods);
@@ -844,16 +971,25 @@ pub fn solve_case(case: &Case, observer: &dyn RunObserver) -> Result<CaseReport,
         methods,
         summary,
         closed_form,
+        warnings: Vec::new(),
     })
 }
 
-/// Read, solve and write one case into `out_dir` (created if missing).
+/// Read, solve and write one case into `out_dir` (created if missing). The case is refused
+/// before the solve if its estimated cost is above `limits`; its warnings (implausible values,
+/// cost above the soft budget) go to the observer and into the result file.
 pub fn run_case_file(
     path: &Path,
     out_dir: &Path,
+    limits: &Limits,
     observer: &dyn RunObserver,
 ) -> Result<CaseOutcome, RunError> {
     let case = Case::from_file(path)?;
+    let mut warnings = case.warnings.clone();
+    warnings.extend(budget::check(&case, limits)?);
+    for w in &warnings {
+        observer.warning(&case.name, w);
+    }
     // The output directory is made and tried for writing before the solve, not found
     // unusable after it.
     let unusable = |source| RunError::OutputDir {
@@ -862,7 +998,17 @@ pub fn run_case_file(
     };
     std::fs::create_dir_all(out_dir).map_err(unusable)?;
     tempfile::NamedTempFile::new_in(out_dir).map_err(unusable)?;
-    let report = solve_case(&case, observer)?;
+    for stale in crate::output::remove_stale_temporaries(out_dir) {
+        tracing::warn!("removed {}, left by a run that was killed", stale.display());
+    }
+    let mut report = solve_case(&case, observer)?;
+    report.warnings = warnings
+        .iter()
+        .map(|w| ReportWarning {
+            kind: w.kind.as_str().into(),
+            message: w.to_string(),
+        })
+        .collect();
     let mut files = Vec::new();
     for w in standard_writers() {
         if !case.output.plots && w.name() == "plots" {
@@ -889,5 +1035,106 @@ mod timestamp_tests {
         assert_eq!(s.len(), 20, "{s}");
         assert!(s.ends_with('Z') && s.as_bytes()[10] == b'T', "{s}");
         assert!(s.parse::<jiff::Timestamp>().is_ok(), "{s}");
+    }
+}
+
+#[cfg(test)]
+mod method_failure_tests {
+    //! Each method's result survives the other's failure (issue 12, item 9): the solvers are
+    //! injected so that one fails on demand; the surviving result and the failure's message
+    //! are both in the report.
+    use super::*;
+
+    const CASE: &str = r#"version = 1
+name = "two_methods"
+[bearing]
+radius_m = 0.02743
+length_m = 0.018288
+radial_clearance_m = 4.89e-5
+[[grooves]]
+center_angle_deg = 0.0
+axial_center_m = 0.0
+circumferential_length_m = 0.0249
+axial_width_m = 0.00381
+[lubricant]
+viscosity_pa_s = 0.02
+[operation]
+cycle_deg = 360.0
+crank_speed_rpm = 1800.0
+[load]
+crank_angle_deg = [0.0, 180.0]
+x_n = [-1500.0, -900.0]
+y_n = [0.0, 200.0]
+[feed]
+pressure_pa = 2.068e5
+[solver]
+rigorous_film = "short_bearing"
+"#;
+
+    fn case() -> Case {
+        Case::from_text(CASE, Path::new("two_methods.toml")).expect("valid case")
+    }
+
+    fn failing(case: &Case, _: &dyn RunObserver) -> Result<MethodResult, RunError> {
+        Err(RunError::Rigorous {
+            case: case.name.clone(),
+            message: "injected failure".into(),
+        })
+    }
+
+    fn failing_mobility(case: &Case, _: &dyn RunObserver) -> Result<MethodResult, RunError> {
+        Err(RunError::MobilityMap {
+            case: case.name.clone(),
+            message: "injected failure".into(),
+        })
+    }
+
+    fn status(report: &CaseReport, key: &str) -> Option<String> {
+        report
+            .parameters
+            .iter()
+            .find(|p| p.key == key)
+            .map(|p| match &p.value {
+                ParameterValue::Text(t) => t.clone(),
+                other => panic!("{key} is not text: {other:?}"),
+            })
+    }
+
+    #[test]
+    fn a_mobility_failure_keeps_the_rigorous_result() {
+        let report =
+            solve_case_with(&case(), &Quiet, run_rigorous, failing_mobility).expect("report");
+        assert!(report.method(Method::Rigorous).is_some());
+        assert!(report.method(Method::Mobility).is_none());
+        assert_eq!(
+            status(&report, MOBILITY_STATUS).as_deref(),
+            Some("failed: case 'two_methods': mobility map: injected failure")
+        );
+        assert_eq!(status(&report, RIGOROUS_STATUS), None);
+        // The summary rows carry the rigorous values alone.
+        assert!(report.summary.iter().all(|r| r.mobility.is_none()));
+        assert!(report.summary.iter().any(|r| r.rigorous.is_some()));
+        report.validate().expect("a writable report");
+    }
+
+    #[test]
+    fn a_rigorous_failure_keeps_the_mobility_result() {
+        let report = solve_case_with(&case(), &Quiet, failing, run_mobility).expect("report");
+        assert!(report.method(Method::Mobility).is_some());
+        assert_eq!(
+            status(&report, RIGOROUS_STATUS).as_deref(),
+            Some("failed: case 'two_methods': rigorous method: injected failure")
+        );
+    }
+
+    #[test]
+    fn the_case_fails_only_when_every_method_failed() {
+        let err = solve_case_with(&case(), &Quiet, failing, failing_mobility)
+            .expect_err("nothing to report");
+        assert_eq!(
+            err.to_string(),
+            "case 'two_methods': every method failed: case 'two_methods': rigorous method: \
+             injected failure; case 'two_methods': mobility map: injected failure"
+        );
     }
 }

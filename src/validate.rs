@@ -40,7 +40,7 @@ pub fn run(cases_dir: &Path, out: &Path) -> ExitCode {
         ("benasciutti_jb1_steady.toml", jb1),
     ] {
         let path = cases_dir.join(file);
-        match run_case_file(&path, out, &Quiet) {
+        match run_case_file(&path, out, &crate::budget::Limits::default(), &Quiet) {
             Ok(o) => check(&o.report, &mut rows),
             Err(e) => {
                 eprintln!("error: {e}");

@@ -27,7 +27,7 @@ fn text(b: &[u8]) -> String {
 }
 
 /// One bad case per kind the application must reject with a precise message.
-const KINDS: [&str; 15] = [
+const KINDS: [&str; 16] = [
     "syntax_error",
     "unknown_key",
     "missing_key",
@@ -42,6 +42,7 @@ const KINDS: [&str; 15] = [
     "missing_csv",
     "bad_csv_row",
     "feed_span",
+    "speed_span",
     "no_supply",
 ];
 
@@ -78,6 +79,7 @@ fn each_bad_case_gives_its_exact_message_with_file_key_and_line() {
             "load.",
             "grid.",
             "feed.",
+            "operation.",
             "methods.",
             "version",
             "radius_m",
@@ -536,4 +538,366 @@ fn case_maps_onto_the_reynolds_solver_parameters() {
     assert!((h.bearing_speed(0.0) + 0.25 * case.crank_speed).abs() < 1e-6 * case.crank_speed);
     // The table keeps 10 significant digits.
     assert!((h.journal_speed(t(90.0)) - case.crank_speed).abs() < 1e-8 * case.crank_speed);
+}
+
+/// The compressor main bearing with `replace` applied to its case text, written into `dir`
+/// (with its load table) as `name.toml`.
+fn compressor_variant(dir: &Path, name: &str, replace: &[(&str, &str)]) -> PathBuf {
+    let mut text = std::fs::read_to_string(root().join("cases/compressor_main.toml")).unwrap();
+    for (from, to) in replace {
+        assert!(text.contains(from), "{from}");
+        text = text.replace(from, to);
+    }
+    std::fs::copy(
+        root().join("cases/compressor_main_load.csv"),
+        dir.join("compressor_main_load.csv"),
+    )
+    .unwrap();
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Sizes are checked against the memory and time budget before any solve (issue 12, item 3):
+/// a 100000 × 100000 grid, a billion steps per cycle and two billion mobility samples are
+/// refused by `check` and by `run` (nothing written), naming the file, the case, what drives
+/// the cost and the flag that raises the limit; a 2000 × 500 grid is refused on time, and with
+/// the limit raised it passes with warnings for memory and time.
+#[test]
+fn sizes_are_checked_against_the_budget_before_the_solve() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let huge = compressor_variant(
+        d,
+        "huge",
+        &[
+            ("n_theta = 120", "n_theta = 100000"),
+            ("n_z = 31", "n_z = 100000"),
+        ],
+    );
+    let steps = compressor_variant(
+        d,
+        "steps",
+        &[(
+            "time_steps_per_cycle = 180",
+            "time_steps_per_cycle = 1000000000",
+        )],
+    );
+    let samples = compressor_variant(
+        d,
+        "samples",
+        &[("samples_per_cycle = 360", "samples_per_cycle = 2000000000")],
+    );
+    let big = compressor_variant(
+        d,
+        "big",
+        &[
+            ("n_theta = 120", "n_theta = 2000"),
+            ("n_z = 31", "n_z = 500"),
+        ],
+    );
+    let expect = [
+        (
+            &huge,
+            "would need about 22 TB of memory (grid 100000 × 100000, 36 field snapshots, 180 \
+             time steps per cycle × up to 6 cycles, 360 mobility samples per cycle), above the \
+             limit of 8.6 GB: reduce it, or raise the limit with --max-memory-gb",
+        ),
+        (&steps, "would need about 1.0 TB of memory"),
+        (&samples, "would need about 800 GB of memory"),
+        (
+            &big,
+            "would take about 6 days (grid 2000 × 500, 36 field snapshots, 180 time steps per \
+             cycle × up to 6 cycles, 360 mobility samples per cycle), above the limit of 24.0 h: \
+             reduce it, or raise the limit with --max-hours",
+        ),
+    ];
+    for (case, message) in expect {
+        let c = case.to_str().unwrap();
+        let out = jbearing(&["check", c]);
+        assert!(!out.status.success());
+        let stderr = text(&out.stderr);
+        assert!(
+            stderr.starts_with(&format!("error: {c}: case 'compressor_main' {message}")),
+            "{stderr}"
+        );
+        let out_dir = d.join("out");
+        let out = jbearing(&["run", c, "--out", out_dir.to_str().unwrap()]);
+        assert!(!out.status.success());
+        assert!(text(&out.stderr).contains(message), "{}", text(&out.stderr));
+        assert!(!out_dir.join("compressor_main.h5").exists());
+    }
+    let b = big.to_str().unwrap();
+    let out = jbearing(&["check", b, "--max-hours", "1000"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stderr = text(&out.stderr);
+    assert!(
+        stderr.contains(&format!(
+            "warning: {b}:1: (case): estimated memory 2.2 GB (grid 2000 × 500"
+        )) && stderr.contains("is above 1.1 GB"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("estimated time 6 days"), "{stderr}");
+}
+
+/// Implausible but valid inputs pass with a warning that names the file, line and key
+/// (issue 12, item 12): `check` exits 0 and prints it; `run` prints it and keeps it in the
+/// result file (`warnings`, `warning_kinds`).
+#[test]
+fn implausible_inputs_are_warned_about_and_recorded() {
+    let dir = tempfile::tempdir().unwrap();
+    let tiny = compressor_variant(
+        dir.path(),
+        "tiny",
+        &[("radial_clearance_m = 4.89e-5", "radial_clearance_m = 1e-9")],
+    );
+    let t = tiny.to_str().unwrap();
+    let out = jbearing(&["check", t]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert_eq!(
+        text(&out.stderr).trim(),
+        format!(
+            "warning: {t}:11: bearing.radial_clearance_m: clearance ratio c/R = 3.646e-8 is far \
+             outside journal-bearing practice (5e-4 … 3e-3, clearance joints of mechanisms \
+             2e-2; warned outside 1e-5 … 5e-2): check the value and its unit (m)"
+        )
+    );
+    // A run that survives its implausible value: the Flores mobility case with a 1 TPa bulk
+    // modulus (which the mobility method does not use).
+    let text_in = std::fs::read_to_string(root().join("cases/flores2006_mobility.toml")).unwrap();
+    let viscous = dir.path().join("viscous.toml");
+    let line = text_in
+        .lines()
+        .find(|l| l.starts_with("viscosity_pa_s"))
+        .unwrap();
+    std::fs::write(
+        &viscous,
+        text_in.replace(line, &format!("{line}\nbulk_modulus_pa = 1e12")),
+    )
+    .unwrap();
+    std::fs::copy(
+        root().join("cases/flores2006_load.csv"),
+        dir.path().join("flores2006_load.csv"),
+    )
+    .unwrap();
+    let out_dir = dir.path().join("out");
+    let out = jbearing(&[
+        "run",
+        viscous.to_str().unwrap(),
+        "--no-progress",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stderr = text(&out.stderr);
+    assert!(
+        stderr.contains("lubricant.bulk_modulus_pa: bulk modulus 1.000e12 Pa is far outside"),
+        "{stderr}"
+    );
+    let f = hdf5_metno::File::open(out_dir.join("flores2006_mobility.h5")).unwrap();
+    let count: i64 = f.attr("warning_count").unwrap().read_scalar().unwrap();
+    assert_eq!(count, 1);
+    let kinds: Vec<hdf5_metno::types::VarLenUnicode> =
+        f.attr("warning_kinds").unwrap().read_raw().unwrap();
+    assert_eq!(kinds[0].as_str(), "implausible");
+    let messages: Vec<hdf5_metno::types::VarLenUnicode> =
+        f.attr("warnings").unwrap().read_raw().unwrap();
+    assert!(
+        messages[0]
+            .as_str()
+            .contains("bulk_modulus_pa: bulk modulus 1.000e12 Pa"),
+        "{}",
+        messages[0].as_str()
+    );
+}
+
+/// A requested method that fails makes `run` and `batch` exit non-zero with a FAILED row, while
+/// the other method's files are written (issue 12, items 5 and 9): the rigorous short-bearing
+/// film with a 0.15 eccentricity limit cannot carry the Flores load; the mobility method can.
+#[test]
+fn a_failed_method_gives_a_failed_row_and_exit_status_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = flores_short_bearing_case(dir.path(), "\neccentricity_limit = 0.15");
+    let out_dir = dir.path().join("out");
+    let c = case.to_str().unwrap();
+    let out = jbearing(&[
+        "run",
+        c,
+        "--no-progress",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    let failed = stdout
+        .lines()
+        .find(|l| l.contains("FAILED"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(
+        failed.starts_with("flores2006_mobility") && failed.contains("rigorous"),
+        "{failed}"
+    );
+    assert_case_files(&out_dir, "flores2006_mobility");
+    // The case CSV's status row says it too.
+    let summary = std::fs::read_to_string(out_dir.join("flores2006_mobility_summary.csv")).unwrap();
+    let status = summary.lines().nth(1).unwrap();
+    assert!(
+        status.starts_with("status,,") && status.contains("failed: case 'flores2006_mobility'"),
+        "{status}"
+    );
+    let out = jbearing(&[
+        "batch",
+        c,
+        "--no-progress",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        text(&out.stderr).contains("0 of 1 case(s) failed, 1 more with a failed method"),
+        "{}",
+        text(&out.stderr)
+    );
+    let mut rdr = csv::Reader::from_path(out_dir.join("batch_summary.csv")).unwrap();
+    let rows: Vec<csv::StringRecord> = rdr.records().map(|r| r.unwrap()).collect();
+    assert_eq!(rows.len(), 2);
+    assert_eq!((&rows[0][1], &rows[0][2]), ("ok", "mobility"));
+    assert_eq!((&rows[1][1], &rows[1][2]), ("failed", "rigorous"));
+    assert!(rows[1][7].starts_with("case 'flores2006_mobility': rigorous method:"));
+}
+
+/// Where stderr is not a terminal (CI, nohup, Slurm: here a pipe), `run` prints plain progress
+/// lines with the elapsed time instead of a progress bar, and no ANSI colour even at -vv; the
+/// per-cycle summary with Newton statistics appears at -v; `--no-progress` silences it.
+#[test]
+fn progress_is_plain_lines_without_a_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = flores_short_bearing_case(dir.path(), "");
+    let out_dir = dir.path().join("out");
+    let c = case.to_str().unwrap();
+    let o = out_dir.to_str().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_jbearing"))
+        .args(["run", c, "--out", o, "-vv"])
+        .current_dir(root())
+        .env_remove("NO_COLOR")
+        .env_remove("RUST_LOG")
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stderr = text(&out.stderr);
+    assert!(!stderr.contains('\u{1b}'), "ANSI escape in {stderr}");
+    for event in [
+        "] flores2006_mobility: rigorous: started",
+        "] flores2006_mobility: rigorous: cycle 2 done, |Δε| from the previous cycle ",
+        "] flores2006_mobility: rigorous: done",
+        "] flores2006_mobility: mobility: done",
+        "] flores2006_mobility: done, 4 files",
+    ] {
+        assert!(stderr.contains(event), "no '{event}' in\n{stderr}");
+    }
+    assert!(stderr.contains("rigorous: cycle 2: |Δε| = "), "{stderr}");
+    assert!(stderr.contains("Newton iterations ("), "{stderr}");
+    assert!(stderr.contains("rigorous: run-in step 1/"), "{stderr}");
+    let out = jbearing(&["run", c, "--out", o, "--no-progress"]);
+    assert!(out.status.success());
+    assert_eq!(text(&out.stderr), "");
+}
+
+/// Temporary files of a killed run (its process gone) are removed by the next run into the same
+/// directory; one whose process is alive (pid 1) is kept (issue 12, item 11).
+#[test]
+fn stale_temporaries_of_killed_runs_are_removed() {
+    let dir = tempfile::tempdir().unwrap();
+    // Linux pids stay below 2^22, so 999999999 is no process.
+    let stale = dir
+        .path()
+        .join(".flores2006_mobility.h5.jbearing-999999999.a1b2c3.tmp.h5");
+    let alive = dir.path().join(".other.h5.jbearing-1.d4e5f6.tmp.h5");
+    let unrelated = dir.path().join(".jbearing-999999999.notes");
+    for f in [&stale, &alive, &unrelated] {
+        std::fs::write(f, "partial").unwrap();
+    }
+    let out = jbearing(&[
+        "run",
+        "cases/flores2006_mobility.toml",
+        "--no-progress",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(!stale.exists(), "the stale temporary is still there");
+    assert!(alive.exists() && unrelated.exists());
+    assert!(
+        text(&out.stderr).contains("a1b2c3.tmp.h5, left by a run that was killed"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+/// The commit is recorded when the binary is built, not asked of git when it runs: with no git
+/// on the PATH, the result file still names the commit of this checkout.
+#[test]
+fn the_build_commit_is_recorded_at_build_time() {
+    let head = Command::new("git")
+        .args(["rev-parse", "HEAD"])
+        .current_dir(root())
+        .output();
+    let Ok(head) = head else {
+        eprintln!("git is not installed: nothing to compare with");
+        return;
+    };
+    if !head.status.success() {
+        eprintln!("not a git checkout: nothing to compare with");
+        return;
+    }
+    let head = text(&head.stdout).trim().to_string();
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_jbearing"))
+        .args([
+            "run",
+            "cases/flores2006_mobility.toml",
+            "--no-progress",
+            "--out",
+            dir.path().to_str().unwrap(),
+        ])
+        .current_dir(root())
+        .env("PATH", "")
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let f = hdf5_metno::File::open(dir.path().join("flores2006_mobility.h5")).unwrap();
+    let commit: hdf5_metno::types::VarLenUnicode =
+        f.attr("git_commit").unwrap().read_scalar().unwrap();
+    assert!(
+        commit.as_str().starts_with(&head),
+        "recorded {} vs HEAD {head}",
+        commit.as_str()
+    );
+}
+
+/// `check` validates what `batch` would refuse before solving: a name used twice, and (with
+/// --out) an output directory that cannot be made.
+#[test]
+fn check_finds_duplicate_names_and_an_unusable_output_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("a_file");
+    std::fs::write(&file, "x").unwrap();
+    let bad_out = file.join("results");
+    let case = "cases/flores2006_mobility.toml";
+    let out = jbearing(&["check", case, case, "--out", bad_out.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let stderr = text(&out.stderr);
+    assert!(
+        stderr.contains(&format!(
+            "error: output directory '{}' is not usable",
+            bad_out.display()
+        )),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains(&format!(
+            "error: {case}: case name 'flores2006_mobility' is already used by {case}"
+        )),
+        "{stderr}"
+    );
 }

@@ -2,9 +2,10 @@
 //! bearing (`cases/flores2009_simple_bearing.toml`) solved in this process, its HDF5 file read
 //! back with hdf5-metno. The CLI side is in `tests/cli.rs`.
 //!
-//! `solve_case` spawns `git describe` (RunInfo), and a child inherits the HDF5 file descriptors
-//! (and flock) open in other threads at that moment, so a parallel `File::open` fails with
-//! EAGAIN. Every test here holds [`SERIAL`] for its whole run.
+//! Every test here holds [`SERIAL`] for its whole run: a child process forked while another
+//! thread has an HDF5 file open inherits its descriptor and flock lock, so a parallel
+//! `File::open` fails with EAGAIN. (`solve_case` no longer forks — the commit is recorded at
+//! build time — but the lock keeps these tests safe from any child a future change adds.)
 
 use std::path::PathBuf;
 

@@ -36,7 +36,17 @@ fn plots_and_csv_summary_are_written() {
 
     let csv_paths = CsvSummaryWriter.write(&report, dir.path()).unwrap();
     let mut rdr = csv::Reader::from_path(&csv_paths[0]).unwrap();
-    let rows: Vec<csv::StringRecord> = rdr.records().map(|r| r.unwrap()).collect();
+    let mut rows: Vec<csv::StringRecord> = rdr.records().map(|r| r.unwrap()).collect();
+    // The first row is each method's status, before any number.
+    let status = rows.remove(0);
+    assert_eq!(
+        (&status[0], &status[3], &status[4]),
+        (
+            "status",
+            report.method(Method::Rigorous).unwrap().status().as_str(),
+            "ok"
+        )
+    );
     assert_eq!(rows.len(), report.summary.len());
     for (row, want) in rows.iter().zip(&report.summary) {
         assert_eq!(&row[0], want.name);

@@ -72,6 +72,56 @@ pub enum CaseError {
     },
 }
 
+/// Something in a valid case that a user should look at before trusting the results: a value
+/// far outside what journal bearings have (1 nm clearance, a 100 MPa specific load), or a case
+/// whose estimated cost is above the soft budget. Printed by `check`, `run` and `batch`
+/// (`warning: FILE:LINE: KEY: message`) and written into the result file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CaseWarning {
+    /// The case file.
+    pub file: PathBuf,
+    /// 1-based line of the key.
+    pub line: usize,
+    /// Dotted key path.
+    pub key: String,
+    /// What kind of warning.
+    pub kind: WarningKind,
+    /// What is unusual and why it matters.
+    pub message: String,
+}
+
+/// The kinds of [`CaseWarning`]; `as_str` is what the result file stores.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WarningKind {
+    /// A value far outside the range of journal bearings (probably a unit or typing error).
+    Implausible,
+    /// The case's estimated memory or time is above the soft budget.
+    Budget,
+}
+
+impl WarningKind {
+    /// `"implausible"` or `"budget"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            WarningKind::Implausible => "implausible",
+            WarningKind::Budget => "budget",
+        }
+    }
+}
+
+impl std::fmt::Display for CaseWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}:{}: {}: {}",
+            self.file.display(),
+            self.line,
+            self.key,
+            self.message
+        )
+    }
+}
+
 /// 1-based line and column of a byte offset.
 pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());

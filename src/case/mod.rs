@@ -15,6 +15,9 @@ pub mod compressor;
 pub mod error;
 pub mod schema;
 pub mod units;
+pub use error::{CaseWarning, WarningKind};
+#[cfg(test)]
+mod csv_tests;
 
 use std::path::{Path, PathBuf};
 
@@ -218,6 +221,8 @@ pub struct Case {
     pub methods: Methods,
     /// Closed-form models of the static-equilibrium table (empty: no table).
     pub closed_form_models: Vec<ClosedFormModel>,
+    /// Values far outside what journal bearings have (see [`plausibility_warnings`]).
+    pub warnings: Vec<CaseWarning>,
 }
 
 impl Case {
@@ -521,20 +526,36 @@ impl<'a> Ctx<'a> {
                 format!("cannot read the CSV file '{}': {e}", csv_path.display()),
             )
         })?;
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-        let Some((hline, header)) = lines.next() else {
-            return Err(csv_err(1, "the CSV file is empty (no header row)".into()));
+        // RFC 4180 through the `csv` crate: quoted fields, CRLF, a UTF-8 byte-order mark (the
+        // reader strips it), '#' comment lines and blank lines skipped; cells trimmed. Lines are
+        // the file's own 1-based line numbers (`Position::line`), whatever was skipped.
+        let mut reader = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .comment(Some(b'#'))
+            .trim(csv::Trim::All)
+            .flexible(true)
+            .from_reader(text.as_bytes());
+        let mut records = reader.records().filter(|r| {
+            // A line of only commas / spaces is blank, not a row of empty cells.
+            !matches!(r, Ok(rec) if rec.iter().all(str::is_empty))
+        });
+        let read_err = |e: csv::Error| {
+            let line = e.position().map_or(1, |p| p.line().max(1) as usize);
+            csv_err(line, format!("not a valid CSV row: {e}"))
         };
-        let headers: Vec<&str> = header.split(',').map(str::trim).collect();
-        if column_factor(headers[0], "crank_angle", Quantity::Angle) != Some(deg_to_rad(1.0)) {
+        let line_of = |r: &csv::StringRecord| r.position().map_or(1, |p| p.line() as usize);
+        let header = match records.next() {
+            None => return Err(csv_err(1, "the CSV file is empty (no header row)".into())),
+            Some(r) => r.map_err(read_err)?,
+        };
+        let hline = line_of(&header);
+        let headers: Vec<String> = header.iter().map(str::to_string).collect();
+        if column_factor(&headers[0], "crank_angle", Quantity::Angle) != Some(deg_to_rad(1.0)) {
             return Err(csv_err(
-                hline + 1,
+                hline,
                 format!(
                     "the first column must be 'crank_angle_deg', found '{}'",
-                    headers[0]
+                    headers[0].escape_debug()
                 ),
             ));
         }
@@ -549,7 +570,7 @@ impl<'a> Ctx<'a> {
                 Some(x) => index.push(x),
                 None => {
                     return Err(csv_err(
-                        hline + 1,
+                        hline,
                         format!(
                             "no column '{base}_<unit>' (unit one of: {}) among {:?}",
                             q.unit_list(),
@@ -561,26 +582,28 @@ impl<'a> Ctx<'a> {
         }
         let mut angles = Vec::new();
         let mut cols = vec![Vec::new(); wanted.len()];
-        for (i, line) in lines {
-            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-            if cells.len() != headers.len() {
+        for record in records {
+            let record = record.map_err(read_err)?;
+            let line = line_of(&record);
+            if record.len() != headers.len() {
                 return Err(csv_err(
-                    i + 1,
+                    line,
                     format!(
                         "row has {} cells, the header has {}",
-                        cells.len(),
+                        record.len(),
                         headers.len()
                     ),
                 ));
             }
             let num = |c: usize| -> Result<f64, CaseError> {
-                match cells[c].parse::<f64>() {
+                match record[c].parse::<f64>() {
                     Ok(v) if v.is_finite() => Ok(v),
                     _ => Err(csv_err(
-                        i + 1,
+                        line,
                         format!(
                             "column '{}': '{}' is not a finite number",
-                            headers[c], cells[c]
+                            headers[c],
+                            record[c].escape_debug()
                         ),
                     )),
                 }
@@ -590,7 +613,7 @@ impl<'a> Ctx<'a> {
                 && a <= prev
             {
                 return Err(csv_err(
-                    i + 1,
+                    line,
                     format!("crank angle {a}° does not increase (previous row {prev}°)"),
                 ));
             }
@@ -600,10 +623,7 @@ impl<'a> Ctx<'a> {
             }
         }
         if angles.is_empty() {
-            return Err(csv_err(
-                hline + 1,
-                "the table has a header but no rows".into(),
-            ));
+            return Err(csv_err(hline, "the table has a header but no rows".into()));
         }
         Ok((text, angles, cols))
     }
@@ -1076,7 +1096,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
                     g.n_z,
                     dz * 1e3,
                     gr.axial_width * 1e3,
-                    (length / gr.axial_width).ceil() as usize + 1
+                    ((length / gr.axial_width).ceil() as usize).saturating_add(1)
                 ),
             ));
         }
@@ -1173,7 +1193,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         ));
     }
 
-    Ok(Case {
+    let mut case = Case {
         name,
         description: raw.description.clone().unwrap_or_default(),
         path: Some(ctx.file.clone()),
@@ -1220,7 +1240,129 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             closed_form: !closed_form_models.is_empty(),
         },
         closed_form_models,
-    })
+        warnings: Vec::new(),
+    };
+    case.warnings = plausibility_warnings(&case, ctx);
+    Ok(case)
+}
+
+/// Ranges outside which a value is flagged as implausible (a unit or typing error, most
+/// likely). Each is about an order of magnitude beyond what journal bearings have:
+/// - clearance ratio c/R: usually 5e-4 … 3e-3 in machine bearings (Khonsari & Booser, *Applied
+///   Tribology*, 3rd ed., §8: "c/R ≈ 0.001"), up to 2e-2 in the clearance joints of mechanisms
+///   (seed 004, Flores et al. 2009, Table 1); flagged outside 1e-5 … 5e-2, which still catches
+///   a length typed in mm for m (× 1000) and the other way round;
+/// - width ratio L/D: 0.2 … 1.5 in practice; flagged outside 0.05 … 3;
+/// - dynamic viscosity: 2e-3 (light oils hot) … 1 Pa·s (ISO VG 680 cold); flagged outside
+///   1e-4 … 10 Pa·s;
+/// - peak specific load max|W| / (2 R L): engine bearings carry up to ~60 MPa; flagged above
+///   200 MPa;
+/// - sliding speed ω R: flagged above 200 m/s (turbomachinery reaches ~100 m/s);
+/// - bulk modulus: mineral oils 1.2 … 2 GPa; flagged outside 1e8 … 1e11 Pa.
+pub const PLAUSIBLE_CLEARANCE_RATIO: (f64, f64) = (1e-5, 5e-2);
+/// See [`PLAUSIBLE_CLEARANCE_RATIO`].
+pub const PLAUSIBLE_WIDTH_RATIO: (f64, f64) = (0.05, 3.0);
+/// See [`PLAUSIBLE_CLEARANCE_RATIO`] (Pa·s).
+pub const PLAUSIBLE_VISCOSITY: (f64, f64) = (1e-4, 10.0);
+/// See [`PLAUSIBLE_CLEARANCE_RATIO`] (Pa).
+pub const PLAUSIBLE_SPECIFIC_LOAD: f64 = 200e6;
+/// See [`PLAUSIBLE_CLEARANCE_RATIO`] (m/s).
+pub const PLAUSIBLE_SLIDING_SPEED: f64 = 200.0;
+/// See [`PLAUSIBLE_CLEARANCE_RATIO`] (Pa).
+pub const PLAUSIBLE_BULK_MODULUS: (f64, f64) = (1e8, 1e11);
+
+/// Warnings for values of a valid case far outside journal-bearing practice (ranges at
+/// [`PLAUSIBLE_CLEARANCE_RATIO`]).
+fn plausibility_warnings(case: &Case, ctx: &Ctx<'_>) -> Vec<CaseWarning> {
+    let mut out = Vec::new();
+    let mut warn = |key: &str, message: String| {
+        out.push(CaseWarning {
+            file: ctx.file.clone(),
+            line: ctx.locator.line_of(key),
+            key: key.to_string(),
+            kind: WarningKind::Implausible,
+            message,
+        })
+    };
+    let outside = |v: f64, (lo, hi): (f64, f64)| v < lo || v > hi;
+    let ratio = case.radial_clearance / case.radius;
+    if outside(ratio, PLAUSIBLE_CLEARANCE_RATIO) {
+        warn(
+            "bearing.radial_clearance_m",
+            format!(
+                "clearance ratio c/R = {ratio:.3e} is far outside journal-bearing practice \
+                 (5e-4 … 3e-3, clearance joints of mechanisms 2e-2; warned outside {:e} … {:e}): check the value and its unit (m)",
+                PLAUSIBLE_CLEARANCE_RATIO.0, PLAUSIBLE_CLEARANCE_RATIO.1
+            ),
+        );
+    }
+    let ld = case.length / (2.0 * case.radius);
+    if outside(ld, PLAUSIBLE_WIDTH_RATIO) {
+        warn(
+            "bearing.length_m",
+            format!(
+                "width ratio L/D = {ld:.3} is far outside journal-bearing practice (0.2 … 1.5; \
+                 warned outside {} … {}): check the value and its unit (m)",
+                PLAUSIBLE_WIDTH_RATIO.0, PLAUSIBLE_WIDTH_RATIO.1
+            ),
+        );
+    }
+    if outside(case.viscosity, PLAUSIBLE_VISCOSITY) {
+        warn(
+            "lubricant.viscosity_pa_s",
+            format!(
+                "viscosity {:.3e} Pa·s is far outside lubricating oils (2e-3 … 1 Pa·s; warned \
+                 outside {:e} … {} Pa·s): check the unit (Pa·s, not cP or mPa·s)",
+                case.viscosity, PLAUSIBLE_VISCOSITY.0, PLAUSIBLE_VISCOSITY.1
+            ),
+        );
+    }
+    if outside(case.bulk_modulus, PLAUSIBLE_BULK_MODULUS) {
+        warn(
+            "lubricant.bulk_modulus_pa",
+            format!(
+                "bulk modulus {:.3e} Pa is far outside mineral oils (1.2e9 … 2e9 Pa; warned \
+                 outside {:e} … {:e} Pa)",
+                case.bulk_modulus, PLAUSIBLE_BULK_MODULUS.0, PLAUSIBLE_BULK_MODULUS.1
+            ),
+        );
+    }
+    let peak = case
+        .load_forces
+        .iter()
+        .map(|f| f[0].hypot(f[1]))
+        .fold(0.0, f64::max);
+    let specific = peak / (2.0 * case.radius * case.length);
+    if specific > PLAUSIBLE_SPECIFIC_LOAD {
+        warn(
+            "load",
+            format!(
+                "peak specific load max|W| / (2 R L) = {:.1} MPa is above {} MPa, far beyond \
+                 what journal bearings carry (engine bearings ≲ 60 MPa): check the load's unit (N)",
+                specific / 1e6,
+                PLAUSIBLE_SPECIFIC_LOAD / 1e6
+            ),
+        );
+    }
+    let cycle = case.cycle_deg;
+    let fastest = (0..=72)
+        .map(|i| {
+            let a = cycle * i as f64 / 72.0;
+            (case.journal_speed.at(a, cycle) - case.bearing_speed.at(a, cycle)).abs()
+        })
+        .fold(0.0, f64::max);
+    let sliding = fastest * case.radius;
+    if sliding > PLAUSIBLE_SLIDING_SPEED {
+        warn(
+            "operation",
+            format!(
+                "sliding speed |ω_j − ω_b| R = {sliding:.0} m/s is above {} m/s: check the \
+                 speeds (rpm) and the radius (m)",
+                PLAUSIBLE_SLIDING_SPEED
+            ),
+        );
+    }
+    out
 }
 
 /// `[closed_form] models` (or `methods.closed_form = true`, meaning every model).

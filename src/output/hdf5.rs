@@ -6,7 +6,8 @@
 //!
 //! ```text
 //! /                      attrs: title, case_name, case_text (the case file as given), case_path,
-//! │                             jbearing_version, git_commit, wall_time_s, started_utc
+//! │                             jbearing_version, git_commit, wall_time_s, started_utc,
+//! │                             warning_count, warnings[], warning_kinds[] (when any)
 //! │  radius, length, radial_clearance          scalars [m]
 //! ├── parameters/        one scalar variable per resolved parameter (numbers with units;
 //! │                      text as strings; flags as 0/1 bytes)
@@ -166,6 +167,24 @@ impl FileWriter {
                 .collect::<Vec<_>>()
                 .join(" "),
         )?;
+
+        file.new_attr::<i64>()
+            .shape(())
+            .create("warning_count")
+            .and_then(|a| a.write_scalar(&(r.warnings.len() as i64)))
+            .map_err(self.err("attribute warning_count"))?;
+        if !r.warnings.is_empty() {
+            let messages: Vec<VarLenUnicode> =
+                r.warnings.iter().map(|w| vlen(&w.message)).collect();
+            let kinds: Vec<VarLenUnicode> = r.warnings.iter().map(|w| vlen(&w.kind)).collect();
+            for (name, values) in [("warnings", messages), ("warning_kinds", kinds)] {
+                file.new_attr::<VarLenUnicode>()
+                    .shape(values.len())
+                    .create(name)
+                    .and_then(|a| a.write(&values))
+                    .map_err(self.err(format!("attribute {name}")))?;
+            }
+        }
 
         let g = r.geometry;
         self.scalar(file, "radius", g.radius, "m", "bearing radius")?;

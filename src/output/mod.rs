@@ -114,6 +114,15 @@ impl Method {
         }
     }
 
+    /// Key of the report parameter that says why this method is missing from a report (it
+    /// failed): `"rigorous_status"` or `"mobility_status"`, text `"failed: …"`.
+    pub const fn failure_key(self) -> &'static str {
+        match self {
+            Method::Rigorous => "rigorous_status",
+            Method::Mobility => "mobility_status",
+        }
+    }
+
     /// One line for humans, written as the group's `description` attribute.
     pub fn description(self) -> &'static str {
         match self {
@@ -226,9 +235,8 @@ pub struct RunInfo {
 }
 
 impl RunInfo {
-    /// Run information for this build: version from Cargo, commit from `git describe` run in the
-    /// source directory this binary was built from (`"unknown"` if that is not a git checkout or
-    /// git is not installed).
+    /// Run information for this build: version from Cargo, commit recorded when the binary was
+    /// built (see [`build_commit`]).
     pub fn for_this_build(wall_time: f64, started_utc: &str) -> Self {
         Self {
             jbearing_version: env!("CARGO_PKG_VERSION").to_string(),
@@ -239,29 +247,15 @@ impl RunInfo {
     }
 }
 
-/// The commit of this build, asked of git once per process: a child process forked while another
-/// thread has an HDF5 file open inherits its descriptor and `flock` lock (HDF5 does not open with
-/// `O_CLOEXEC`), so batches should spawn as few children as possible.
+/// The commit this binary was built from: `git describe --always --dirty --abbrev=40` run at
+/// build time (the `git-version` crate, which also makes cargo rebuild when HEAD or the index
+/// changes), `"unknown"` when the source was not a git checkout or git was missing. No git
+/// process runs when the binary runs.
 fn build_commit() -> &'static str {
-    static COMMIT: std::sync::OnceLock<String> = std::sync::OnceLock::new();
-    COMMIT.get_or_init(|| {
-        git_describe(Path::new(env!("CARGO_MANIFEST_DIR"))).unwrap_or_else(|| "unknown".into())
-    })
-}
-
-fn git_describe(dir: &Path) -> Option<String> {
-    let out = std::process::Command::new("git")
-        .arg("-C")
-        .arg(dir)
-        .args(["describe", "--always", "--dirty", "--abbrev=40"])
-        .output()
-        .ok()?;
-    if !out.status.success() {
-        return None;
-    }
-    let text = String::from_utf8(out.stdout).ok()?;
-    let text = text.trim();
-    (!text.is_empty()).then(|| text.to_string())
+    git_version::git_version!(
+        args = ["--always", "--dirty", "--abbrev=40"],
+        fallback = "unknown"
+    )
 }
 
 /// A named quantity over the stored cycle of one method, sampled at the method's `time`.
@@ -343,6 +337,32 @@ pub struct MethodResult {
 }
 
 impl MethodResult {
+    /// The status a user must read before trusting this result: `"ok"`, or what is wrong —
+    /// `"not periodic"` (the cycle limit was reached first), `"N stalled"` (steps accepted above
+    /// the Newton tolerance), joined by ", ".
+    pub fn status(&self) -> String {
+        let info = |key: &str| {
+            self.solver_info
+                .iter()
+                .find(|(k, _)| k == key)
+                .map(|(_, v)| v)
+        };
+        let mut notes = Vec::new();
+        if let Some(ParameterValue::Flag(false)) = info("periodic") {
+            notes.push("not periodic".to_string());
+        }
+        if let Some(ParameterValue::Integer(n)) = info("stalled_steps")
+            && *n > 0
+        {
+            notes.push(format!("{n} stalled"));
+        }
+        if notes.is_empty() {
+            "ok".into()
+        } else {
+            notes.join(", ")
+        }
+    }
+
     /// The series named `name`, if present.
     pub fn series(&self, name: &str) -> Option<&Series> {
         self.series.iter().find(|s| s.name == name)
@@ -485,6 +505,19 @@ pub struct CaseReport {
     pub summary: Vec<SummaryRow>,
     /// The closed-form static-equilibrium table, when the case asks for it.
     pub closed_form: Option<ClosedFormTable>,
+    /// Warnings about the case (implausible values, cost above the soft budget), written as
+    /// the file's `warnings` / `warning_kinds` attributes.
+    pub warnings: Vec<ReportWarning>,
+}
+
+/// A warning about the case, kept in the result file: its kind (`"implausible"`, `"budget"`)
+/// and the message with file, line and key.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReportWarning {
+    /// Kind, a lowercase word.
+    pub kind: String,
+    /// The message as printed.
+    pub message: String,
 }
 
 /// Why a report could not be written.
@@ -562,6 +595,56 @@ pub fn standard_writers() -> Vec<Box<dyn OutputWriter>> {
     ]
 }
 
+/// The tag in the names of [`write_atomically`]'s temporary files, followed by the writer's
+/// process id.
+const TEMP_TAG: &str = "jbearing-";
+
+/// Remove the temporary files that killed runs left in `dir` and return their paths: hidden
+/// files named by [`write_atomically`] (`.NAME.jbearing-PID.XXXXXX.tmp[.ext]`) whose process
+/// is gone. A file whose process may still be running (its PID is alive, or `/proc` cannot
+/// tell and the file is less than a day old) is kept. Errors (a file removed meanwhile, a
+/// directory that cannot be listed) are not errors of the run and are ignored.
+pub fn remove_stale_temporaries(dir: &Path) -> Vec<PathBuf> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let proc_fs = Path::new("/proc/self").exists();
+    let mut removed = Vec::new();
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let Some(pid) = temporary_owner(&name) else {
+            continue;
+        };
+        if pid == std::process::id() {
+            continue;
+        }
+        let stale = if proc_fs {
+            !Path::new("/proc").join(pid.to_string()).exists()
+        } else {
+            entry
+                .metadata()
+                .and_then(|m| m.modified())
+                .ok()
+                .and_then(|t| t.elapsed().ok())
+                .is_some_and(|age| age.as_secs() > 86_400)
+        };
+        if stale && std::fs::remove_file(entry.path()).is_ok() {
+            removed.push(entry.path());
+        }
+    }
+    removed
+}
+
+/// The writer's process id, if `name` is one of [`write_atomically`]'s temporary files.
+fn temporary_owner(name: &str) -> Option<u32> {
+    if !name.starts_with('.') || !(name.ends_with(".tmp") || name.contains(".tmp.")) {
+        return None;
+    }
+    let after = &name[name.find(&format!(".{TEMP_TAG}"))? + 1 + TEMP_TAG.len()..];
+    let pid = &after[..after.find('.')?];
+    pid.parse().ok()
+}
+
 /// Runs `write` on a fresh temporary path in the directory of `target` and renames the result to
 /// `target` when `write` succeeds. On error (or panic) the temporary file is removed and `target`
 /// is untouched: an old `target` stays as it was, a missing one stays missing. Rename within one
@@ -579,14 +662,16 @@ where
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "output".into());
-    // The temporary file is hidden and carries the final name, so a crashed run leaves an
-    // obvious `.CASE.h5.XXXXXX.tmp.h5` rather than a plausible-looking result.
-    // Keep the extension last: some encoders (the PNG one) choose the format by extension.
+    // The temporary file is hidden, carries the final name and this process's id
+    // (`.CASE.h5.jbearing-PID.XXXXXX.tmp.h5`), so a killed run leaves an obvious leftover, never
+    // a plausible-looking result, and a later run recognises it safely
+    // ([`remove_stale_temporaries`]). Keep the extension last: some encoders (the PNG one)
+    // choose the format by extension.
     let suffix = match target.extension() {
         Some(ext) => format!(".tmp.{}", ext.to_string_lossy()),
         None => ".tmp".to_string(),
     };
-    let prefix = format!(".{stem}.");
+    let prefix = format!(".{stem}.{TEMP_TAG}{}.", std::process::id());
     let mut builder = tempfile::Builder::new();
     builder.prefix(&prefix).suffix(&suffix);
     // tempfile creates 0600 files; results are ordinary files (0644 less the umask).
@@ -605,15 +690,50 @@ where
         .into_temp_path();
     // `temp` deletes the file when dropped, which covers every early return below.
     write(&temp)?;
+    // Data on disk before the rename: after a power loss the target is the old file or the
+    // complete new one, not an empty file under the new name.
+    std::fs::File::open(&temp)
+        .and_then(|f| f.sync_all())
+        .map_err(|source| OutputError::Io {
+            action: "flushing to disk",
+            path: target.to_path_buf(),
+            source,
+        })?;
     temp.persist(target).map_err(|e| OutputError::Io {
         action: "renaming the finished temporary file to",
         path: target.to_path_buf(),
         source: e.error,
     })?;
+    // The rename itself on disk (best effort: not every platform can sync a directory).
+    if let Ok(d) = std::fs::File::open(&dir) {
+        let _ = d.sync_all();
+    }
     Ok(())
 }
 
 impl CaseReport {
+    /// Why `method` is missing from this report, if the case asked for it and it failed (the
+    /// text after "failed: ").
+    pub fn failure(&self, method: Method) -> Option<&str> {
+        self.parameters
+            .iter()
+            .find(|p| p.key == method.failure_key())
+            .and_then(|p| match &p.value {
+                ParameterValue::Text(t) => Some(t.strip_prefix("failed: ").unwrap_or(t)),
+                _ => None,
+            })
+    }
+
+    /// The status of `method` in this report: its result's [`MethodResult::status`],
+    /// `"failed: …"` if it failed, `None` if the case did not ask for it.
+    pub fn status(&self, method: Method) -> Option<String> {
+        match (self.method(method), self.failure(method)) {
+            (Some(m), _) => Some(m.status()),
+            (None, Some(why)) => Some(format!("failed: {why}")),
+            (None, None) => None,
+        }
+    }
+
     /// The closed-form table's row of `model` (a `ClosedFormModel::name()`, or "fd_reynolds"),
     /// if the case asked for the table; its `status` says whether the equilibrium was found.
     pub fn closed_form_row(&self, model: &str) -> Option<&ClosedFormRow> {

@@ -257,5 +257,6 @@ pub fn report(case_name: &str) -> CaseReport {
         methods: vec![rig, mob],
         summary,
         closed_form: None,
+        warnings: Vec::new(),
     }
 }

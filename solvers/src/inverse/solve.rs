@@ -193,9 +193,10 @@ where
     };
     for k in 1..=run_in {
         let t = -((run_in - k) as f64) * dt;
+        // Errors of the run-in give the crank angle within the cycle (see `When`).
         let at = Where {
             time: t,
-            crank_angle_deg: load.crank_angle_deg(t),
+            crank_angle_deg: load.crank_angle_deg(t).rem_euclid(load.cycle_deg()),
             cycle: 0,
         };
         let step = orbit.march_step(&mut stepper, film, dt, &ramp, at, false)?;

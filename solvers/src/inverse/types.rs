@@ -318,8 +318,8 @@ pub enum InverseError {
     InvalidParameter { name: &'static str, value: f64 },
     /// The film cannot carry the load: the journal reached the wall.
     #[error(
-        "film collapse at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° ({phase}): |ε| = {eccentricity:.6}, ε = ({:.6}, {:.6}), h_min = {min_film_thickness:.3e} m, residual {residual:.3e}",
-        eccentricity_ratio[0], eccentricity_ratio[1], phase = CyclePhase(*cycle)
+        "film collapse at {when}: |ε| = {eccentricity:.6}, ε = ({:.6}, {:.6}), h_min = {min_film_thickness:.3e} m, residual {residual:.3e}",
+        eccentricity_ratio[0], eccentricity_ratio[1], when = When(*time, *crank_angle_deg, *cycle)
     )]
     Collapse {
         time: f64,
@@ -332,8 +332,8 @@ pub enum InverseError {
     },
     /// Newton did not converge in the step.
     #[error(
-        "Newton did not converge at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° ({phase}) after {iterations} iterations: residual {residual:.3e}, last ε = ({:.6}, {:.6})",
-        eccentricity_ratio[0], eccentricity_ratio[1], phase = CyclePhase(*cycle)
+        "Newton did not converge at {when} after {iterations} iterations: residual {residual:.3e}, last ε = ({:.6}, {:.6})",
+        eccentricity_ratio[0], eccentricity_ratio[1], when = When(*time, *crank_angle_deg, *cycle)
     )]
     NewtonFailed {
         time: f64,
@@ -345,8 +345,8 @@ pub enum InverseError {
     },
     /// The film model failed at a trial ε.
     #[error(
-        "film model failed at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° ({phase}), trial ε = ({:.6}, {:.6}): {source}",
-        eccentricity_ratio[0], eccentricity_ratio[1], phase = CyclePhase(*cycle)
+        "film model failed at {when}, trial ε = ({:.6}, {:.6}): {source}",
+        eccentricity_ratio[0], eccentricity_ratio[1], when = When(*time, *crank_angle_deg, *cycle)
     )]
     Film {
         time: f64,
@@ -360,15 +360,23 @@ pub enum InverseError {
     NonFiniteLoad { quantity: &'static str, time: f64 },
 }
 
-/// How an error names the phase of the run: the run-in (cycle 0, at times t < 0 before the
-/// first load cycle, with the quasi-load still ramping up) or load cycle k.
-struct CyclePhase(usize);
+/// How an error names the moment of the run: in load cycle k, the time and crank angle; in the
+/// run-in (cycle 0, solver times t < 0 before the first load cycle, the quasi-load still
+/// ramping up), the crank angle within the cycle (the solver wraps it into [0, cycle)) and how
+/// long before the first cycle — never a negative time or angle.
+struct When(f64, f64, usize);
 
-impl std::fmt::Display for CyclePhase {
+impl std::fmt::Display for When {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.0 {
-            0 => write!(f, "run-in before the first cycle, quasi-load ramping up"),
-            k => write!(f, "cycle {k}"),
+        let When(time, crank, cycle) = *self;
+        match cycle {
+            0 => write!(
+                f,
+                "crank angle {crank:.2}° of the run-in ({:.6e} s before the first cycle, \
+                 quasi-load ramping up)",
+                -time
+            ),
+            k => write!(f, "t = {time:.6e} s, crank angle {crank:.2}° (cycle {k})"),
         }
     }
 }
@@ -377,24 +385,30 @@ impl std::fmt::Display for CyclePhase {
 mod tests {
     use super::*;
 
-    /// An error of the run-in says so instead of only showing a negative time and crank angle.
+    /// An error of the run-in says so, with the time before the first cycle and the crank
+    /// angle within the cycle, never a negative time or angle.
     #[test]
     fn errors_name_the_run_in() {
         let at = |cycle| InverseError::NewtonFailed {
-            time: -8.24e-3,
-            crank_angle_deg: -89.0,
+            time: if cycle == 0 { -8.24e-3 } else { 8.24e-3 },
+            crank_angle_deg: 271.0,
             cycle,
             iterations: 3,
             residual: 0.5,
             eccentricity_ratio: [0.1, 0.2],
         };
-        assert!(
-            at(0)
-                .to_string()
-                .contains("(run-in before the first cycle, quasi-load ramping up)"),
-            "{}",
-            at(0)
+        assert_eq!(
+            at(0).to_string(),
+            "Newton did not converge at crank angle 271.00° of the run-in (8.240000e-3 s before \
+             the first cycle, quasi-load ramping up) after 3 iterations: residual 5.000e-1, last \
+             ε = (0.100000, 0.200000)"
         );
-        assert!(at(2).to_string().contains("(cycle 2)"), "{}", at(2));
+        assert!(
+            at(2)
+                .to_string()
+                .contains("at t = 8.240000e-3 s, crank angle 271.00° (cycle 2) after"),
+            "{}",
+            at(2)
+        );
     }
 }
