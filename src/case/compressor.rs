@@ -185,7 +185,16 @@ impl Compressor {
             {
                 std::fs::create_dir_all(dir)?;
             }
-            std::fs::write(path, text)?;
+            // Atomically, like every result file: a table is the old one or the complete new
+            // one, never half written.
+            crate::output::write_atomically(path, |tmp| {
+                std::fs::write(tmp, &text).map_err(|source| crate::output::OutputError::Io {
+                    action: "writing",
+                    path: path.clone(),
+                    source,
+                })
+            })
+            .map_err(std::io::Error::other)?;
         }
         Ok(self.tables.to_vec())
     }
