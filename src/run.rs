@@ -390,9 +390,17 @@ impl InverseObserver for InverseAdapter<'_> {
 pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> MethodResult {
     let c = case.radial_clearance;
     let st = &sol.steps;
+    // The solver's steps end at crank angles Δ, 2Δ, …, cycle; the file samples 0, Δ, …,
+    // cycle − Δ (the grid both methods share, see `crank_grid`): the last step, at the end of
+    // the periodic cycle, is the sample at 0.
+    let n = st.len();
+    let order: Vec<usize> = std::iter::once(n.saturating_sub(1))
+        .chain(0..n.saturating_sub(1))
+        .collect();
     let col = |f: &dyn Fn(&jbearing_solvers::inverse::InverseStep) -> f64| {
-        st.iter().map(f).collect::<Vec<f64>>()
+        order.iter().map(|&i| f(&st[i])).collect::<Vec<f64>>()
     };
+    let (time, crank_angle) = crank_grid(case, n);
     let mut series = vec![
         Series::new(
             names::LOAD_X,
@@ -432,9 +440,9 @@ pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> Me
         ),
         Series::new(
             names::ATTITUDE_ANGLE,
-            "attitude angle of the journal centre",
+            ATTITUDE_LONG_NAME,
             "rad",
-            col(&|s| s.attitude_angle),
+            col(&|s| s.eccentricity_ratio[1].atan2(s.eccentricity_ratio[0])),
         ),
         Series::new(
             names::MIN_FILM_THICKNESS,
@@ -479,8 +487,8 @@ pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> Me
     let info = &sol.info;
     MethodResult {
         method: Method::Rigorous,
-        time: col(&|s| s.time),
-        crank_angle: col(&|s| s.crank_angle_deg),
+        time,
+        crank_angle,
         series,
         fields: inverse_fields(case, sol),
         solver_info: vec![
@@ -569,6 +577,13 @@ fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> 
     if snaps.iter().any(|s| s.fields.pressure.dim() != (nt, nz)) || nt < 3 || nz < 2 {
         return None;
     }
+    // Each snapshot at its step's exact place on the crank grid (the step at the end of the cycle
+    // is the instant at 0, see `inverse_result`), in crank order.
+    let n = sol.steps.len();
+    let (grid_time, grid_crank) = crank_grid(case, n);
+    let place = |step: usize| (step + 1) % n.max(1);
+    let mut snaps: Vec<&jbearing_solvers::inverse::FieldSnapshot> = snaps.iter().collect();
+    snaps.sort_by_key(|s| place(s.step_index));
     let k = snaps.len();
     let mut pressure = Array3::zeros((k, nt, nz));
     let mut content = Array3::zeros((k, nt, nz));
@@ -590,8 +605,14 @@ fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> 
             .assign(&s.fields.film_fraction);
     }
     Some(FieldSnapshots {
-        time: snaps.iter().map(|s| s.time).collect(),
-        crank_angle: snaps.iter().map(|s| s.crank_angle_deg).collect(),
+        time: snaps
+            .iter()
+            .map(|s| grid_time[place(s.step_index)])
+            .collect(),
+        crank_angle: snaps
+            .iter()
+            .map(|s| grid_crank[place(s.step_index)])
+            .collect(),
         theta: (0..nt)
             .map(|i| std::f64::consts::TAU * i as f64 / nt as f64)
             .collect(),
@@ -656,7 +677,13 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
     };
     let mut params = OrbitParams::new(bearing);
     params.initial_eccentricity = case.solver.initial_eccentricity;
-    params.samples_per_cycle = case.output.samples_per_cycle;
+    // With the rigorous method beside it, the mobility orbit is sampled on the same crank grid
+    // (one sample per rigorous time step) so that the two compare sample by sample.
+    params.samples_per_cycle = if case.methods.rigorous {
+        case.solver.time_steps_per_cycle
+    } else {
+        case.output.samples_per_cycle
+    };
     params.periodicity_tolerance = case.solver.periodicity_tolerance.min(1e-5);
     params.max_cycles = case.solver.max_cycles.max(2) * 5;
     params.eccentricity_limit = case.solver.eccentricity_limit.max(0.9995);
@@ -737,10 +764,12 @@ fn mobility_result(
 ) -> MethodResult {
     let c = case.radial_clearance;
     let cycle = case.cycle_deg;
-    let shift = (orbit.crank_angle_deg[0] / cycle).floor() * cycle;
-    let crank: Vec<f64> = orbit.crank_angle_deg.iter().map(|a| a - shift).collect();
+    // The orbit's samples run from 0 to the full cycle; the last repeats the first of the
+    // periodic orbit and is dropped (the shared crank grid, see `crank_grid`).
+    let n = orbit.time.len().saturating_sub(1).max(1);
+    let (time, crank) = crank_grid(case, n);
     let perf = &orbit.performance;
-    let col = |f: &dyn Fn(usize) -> f64| (0..orbit.time.len()).map(f).collect::<Vec<f64>>();
+    let col = |f: &dyn Fn(usize) -> f64| (0..n).map(f).collect::<Vec<f64>>();
     let series = vec![
         Series::new(
             names::LOAD_X,
@@ -780,9 +809,9 @@ fn mobility_result(
         ),
         Series::new(
             names::ATTITUDE_ANGLE,
-            "attitude angle of the journal centre",
+            ATTITUDE_LONG_NAME,
             "rad",
-            col(&|i| orbit.attitude_angle[i]),
+            col(&|i| orbit.eccentricity[i][1].atan2(orbit.eccentricity[i][0])),
         ),
         Series::new(
             names::MIN_FILM_THICKNESS,
@@ -811,7 +840,7 @@ fn mobility_result(
     ];
     MethodResult {
         method: Method::Mobility,
-        time: orbit.time.clone(),
+        time,
         crank_angle: crank,
         series,
         fields: None,
@@ -849,6 +878,23 @@ fn mobility_result(
             ),
         ],
     }
+}
+
+/// The one attitude angle of the result files, with its reference direction.
+pub const ATTITUDE_LONG_NAME: &str = "attitude angle: polar angle of the journal centre, measured \
+     from the bearing frame's +x axis towards +y, in (-pi, pi]";
+
+/// The crank-angle grid of the result files, shared by both methods: n samples per cycle at
+/// crank angles cycle·k/n (exact for whole degrees: 90, not 89.99999999999999) and times
+/// period·k/n, k = 0 … n − 1; the periodic end point is not repeated.
+pub fn crank_grid(case: &Case, n: usize) -> (Vec<f64>, Vec<f64>) {
+    let n = n.max(1);
+    let period = case.period();
+    let time = (0..n).map(|k| period * k as f64 / n as f64).collect();
+    let crank = (0..n)
+        .map(|k| case.cycle_deg * k as f64 / n as f64)
+        .collect();
+    (time, crank)
 }
 
 /// The summary table of a report from its methods.
@@ -978,7 +1024,11 @@ fn solve_case_with(
     Ok(CaseReport {
         case_name: case.name.clone(),
         case_text: case.text.clone(),
-        case_path: case.path.clone(),
+        // Absolute, so that the file says where the case was wherever the command ran.
+        case_path: case
+            .path
+            .as_ref()
+            .map(|p| std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())),
         input_files: case.input_files.clone(),
         geometry: case.geometry(),
         parameters,

@@ -46,8 +46,13 @@ fn expected_values(r: &CaseReport) -> String {
         if let Some(f) = &m.fields {
             line(
                 &mut out,
-                &format!("{g}/fields/time"),
+                &format!("{g}/fields/field_time"),
                 &mut f.time.iter().copied(),
+            );
+            line(
+                &mut out,
+                &format!("{g}/fields/field_crank_angle"),
+                &mut f.crank_angle.iter().copied(),
             );
             line(
                 &mut out,

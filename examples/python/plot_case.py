@@ -3,8 +3,13 @@
     python -m venv .venv && .venv/bin/pip install -r examples/python/requirements.txt
     .venv/bin/python examples/python/plot_case.py results/compressor_main.h5 --out plots/
 
+The whole file is opened as one xarray DataTree (`xr.open_datatree`): the method groups share
+one crank-angle grid, so `tree["rigorous"].dataset - tree["mobility"].dataset` compares them
+sample by sample, `.sel(crank_angle=90)` picks an exact crank angle and
+`tree["rigorous/fields"].dataset.sel(field_crank_angle=…)` a stored field instant.
+
 Writes CASE_series.png (the cycle: eccentricity ratio, h_min, flow and power loss, both
-methods) and CASE_pressure.png (the film pressure over the unrolled bearing surface at the
+methods, and the mobility-minus-rigorous difference of h_min) and CASE_pressure.png (the film pressure over the unrolled bearing surface at the
 instant of the highest peak pressure), and prints what the file holds. With --surface-png, also
 CASE_surface.png (the same pressure on the 3-D bearing surface, rendered off screen by pyvista);
 with --show, opens that surface in a pyvista window with a slider over the stored instants.
@@ -32,10 +37,10 @@ STYLE = {"rigorous": dict(color="tab:blue"), "mobility": dict(color="tab:red", l
 
 
 def open_methods(path):
-    """The method groups present in the file, as xarray Datasets."""
-    root = xr.open_dataset(path, engine="h5netcdf")
-    return root, {m: xr.open_dataset(path, engine="h5netcdf", group=m)
-                  for m in root.attrs["methods"].split()}
+    """The whole file as a DataTree, and the method groups present in it as Datasets."""
+    # phony_dims: the VTKHDF group (for pyvista) has no netCDF dimensions of its own.
+    tree = xr.open_datatree(path, engine="h5netcdf", phony_dims="sort")
+    return tree, {m: tree[m].dataset for m in tree.attrs["methods"].split()}
 
 
 def plot_series(methods, case, out):
@@ -47,9 +52,19 @@ def plot_series(methods, case, out):
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
         ax.legend()
+    if {"rigorous", "mobility"} <= set(methods):
+        # Both methods sample the same crank angles: the difference is one line of xarray.
+        diff = (methods["mobility"]["min_film_thickness"]
+                - methods["rigorous"]["min_film_thickness"]) * 1e6
+        twin = axes.flat[1].twinx()
+        twin.plot(diff["crank_angle"], diff, color="grey", lw=0.8, label="mobility − rigorous")
+        twin.set_ylabel("Δh_min [µm]", color="grey")
+    # The crank grid stops one step short of the cycle (the periodic point is not repeated).
+    ca = methods[next(iter(methods))]["crank_angle"].values
+    cycle = float(ca[-1] + (ca[1] - ca[0]))
     for ax in axes[1]:
         ax.set_xlabel("crank angle [deg]")
-        ax.set_xticks(np.arange(0, 361, 90))
+        ax.set_xticks(np.arange(0, cycle + 1, 90))
     fig.suptitle(f"{case}: rigorous and mobility over the cycle")
     path = out / f"{case}_series.png"
     fig.savefig(path, dpi=110)
@@ -58,14 +73,14 @@ def plot_series(methods, case, out):
 
 
 def plot_pressure(fields, case, out):
-    snap = fields["pressure"].isel(time=peak_step(fields))
+    snap = fields["pressure"].isel(field_crank_angle=peak_step(fields))
     fig, ax = plt.subplots(figsize=(9, 4), constrained_layout=True)
     mesh = ax.pcolormesh(np.degrees(snap["theta"]), snap["z"] * 1e3, snap.T / 1e6,
                          shading="gouraud", cmap="viridis")
     fig.colorbar(mesh, ax=ax, label="film pressure [MPa]")
     ax.set_xlabel("θ [deg] (from +x towards +y, bearing frame)")
     ax.set_ylabel("z [mm]")
-    ax.set_title(f"{case}: pressure at crank angle {float(snap['crank_angle']):.0f}°, "
+    ax.set_title(f"{case}: pressure at crank angle {float(snap['field_crank_angle']):.0f}°, "
                  f"peak {float(snap.max()) / 1e6:.2f} MPa")
     path = out / f"{case}_pressure.png"
     fig.savefig(path, dpi=110)
@@ -75,7 +90,7 @@ def plot_pressure(fields, case, out):
 
 def peak_step(fields):
     """Index of the stored instant with the highest peak pressure."""
-    return int(fields["pressure"].max(dim=("theta", "z")).argmax(dim="time"))
+    return int(fields["pressure"].max(dim=("theta", "z")).argmax(dim="field_crank_angle"))
 
 
 def surface_at(path, step):
@@ -104,7 +119,8 @@ def surface_png(path, fields, case, out):
     plotter.add_mesh(mesh, style="wireframe", color="grey", opacity=0.3)
     plotter.add_mesh(warped, scalars="pressure_MPa", cmap="viridis",
                      scalar_bar_args={"title": "film pressure [MPa]", "fmt": "%.1f"})
-    plotter.add_text(f"{case}: crank angle {float(fields['crank_angle'][k]):.0f} deg", font_size=12)
+    plotter.add_text(f"{case}: crank angle {float(fields['field_crank_angle'][k]):.0f} deg",
+                     font_size=12)
     # Look at the pressure hill from outside, a little above the mid-plane.
     peak = radial[int(np.argmax(p))] / r[int(np.argmax(p))]
     R = float(r.max())
@@ -143,18 +159,22 @@ def main():
     args = ap.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
 
-    root, methods = open_methods(args.file)
+    tree, methods = open_methods(args.file)
+    root = tree
     case = root.attrs["case_name"]
     print(f"case {case}: jbearing {root.attrs['jbearing_version']} "
           f"({root.attrs['git_commit']}), wall time {root.attrs['wall_time_s']:.1f} s")
     print(f"methods: {', '.join(methods)}")
     print(plot_series(methods, case, args.out))
 
-    summary = xr.open_dataset(args.file, engine="h5netcdf", group="summary")
+    summary = tree["summary"].dataset
     print(summary.to_dataframe().T.to_string())
+    for method in methods:
+        row = summary.sel(solution_method=method)
+        print(f"{method}: cycle minimum of h_min {float(row['min_film_thickness_min']) * 1e6:.3f} µm")
 
     if "rigorous" in methods:
-        fields = xr.open_dataset(args.file, engine="h5netcdf", group="rigorous/fields")
+        fields = tree["rigorous/fields"].dataset
         print(plot_pressure(fields, case, args.out))
         surface = pv.read(args.file, force_ext=".vtkhdf")
         print(f"surface: {surface.n_points} points, {surface.n_cells} cells, "

@@ -5,25 +5,28 @@
 //! `long_name` attributes):
 //!
 //! ```text
-//! /                      attrs: title, case_name, case_text (the case file as given), case_path,
+//! /                      attrs: Conventions = "CF-1.10", title, source, history, case_name,
+//! │                             case_text (the case file as given), case_path (absolute),
 //! │                             jbearing_version, git_commit, wall_time_s, started_utc,
 //! │                             warning_count, warnings[], warning_kinds[] (when any)
 //! │  radius, length, radial_clearance          scalars [m]
 //! ├── parameters/        one scalar variable per resolved parameter (numbers with units;
 //! │                      text as strings; flags as 0/1 bytes)
 //! ├── rigorous/          attrs: method, description, solver information
-//! │   │  time(time) [s]                         coordinate (dimension scale)
-//! │   │  crank_angle(time) [degree]             auxiliary coordinate
-//! │   │  <series>(time)                         load_x, feed_pressure, min_film_thickness, …
+//! │   │  crank_angle(crank_angle) [degree]      coordinate (dimension scale): 0, Δ, …, cycle − Δ,
+//! │   │                                       the same exact values for both methods
+//! │   │  time(crank_angle) [s]                  auxiliary coordinate (time within the cycle)
+//! │   │  <series>(crank_angle)                  load_x, feed_pressure, min_film_thickness, …
 //! │   └── fields/
-//! │         time(time), crank_angle(time)       the stored instants
+//! │         field_crank_angle(field_crank_angle) the stored instants (own dimension: a DataTree
+//! │         field_time(field_crank_angle) [s]    child may not reuse its parent's dimension)
 //! │         theta(theta) [rad], z(z) [m]        the grid
-//! │         <field>(time, theta, z)             pressure, film_thickness, film_content, …
+//! │         <field>(field_crank_angle, theta, z) pressure, film_thickness, film_content
 //! ├── mobility/          as rigorous/, without fields/
 //! ├── input_files/       file(file): paths the case refers to; text(file): their contents
 //! ├── summary/
-//! │      method(method)                         "rigorous", "mobility"
-//! │      <row>(method)                          NaN (= _FillValue) where a method lacks it
+//! │      solution_method(solution_method)       "rigorous", "mobility"
+//! │      <row>(solution_method)                 NaN (= _FillValue) where a method lacks it
 //! ├── closed_form/       (when the case asks for it) attrs: load_x, load_y [N], relative_speed
 //! │      model(model)                           "short_gumbel", "long_sommerfeld", …, "fd_reynolds"
 //! │      status(model)                          "ok" or why the model has no equilibrium
@@ -146,6 +149,24 @@ impl FileWriter {
             "title",
             &format!("jbearing results for case '{}'", r.case_name),
         )?;
+        // CF-1.10 (https://cfconventions.org): the global attributes; every variable has units
+        // and long_name. No standard_name: the CF table has none for bearing quantities, and
+        // the time coordinates are times within a periodic cycle without a reference date
+        // (a CF time coordinate needs "s since <date>", which xarray would decode to dates).
+        self.str_attr(file, "Conventions", "CF-1.10")?;
+        self.str_attr(
+            file,
+            "source",
+            &format!(
+                "jbearing {} (commit {})",
+                run.jbearing_version, run.git_commit
+            ),
+        )?;
+        self.str_attr(
+            file,
+            "history",
+            &format!("{} jbearing run of case '{}'", run.started_utc, r.case_name),
+        )?;
         self.str_attr(file, "case_name", &r.case_name)?;
         self.str_attr(file, "case_text", &r.case_text)?;
         let case_path = r
@@ -238,6 +259,11 @@ impl FileWriter {
             }
             self.str_attr(&ds, "long_name", &p.long_name)?;
             if matches!(p.value, ParameterValue::Flag(_)) {
+                ds.new_attr::<i8>()
+                    .shape(2)
+                    .create("flag_values")
+                    .and_then(|a| a.write(&[0i8, 1]))
+                    .map_err(self.err(format!("{} flag_values", p.key)))?;
                 self.str_attr(&ds, "flag_meanings", "false true")?;
             }
         }
@@ -291,15 +317,17 @@ impl FileWriter {
                 ParameterValue::Text(x) => self.str_attr(&g, k, x)?,
             }
         }
-        let time = self.coordinate(&g, "time", &m.time, "s", "time")?;
-        let crank = self.variable(&g, "crank_angle", &m.crank_angle, &[&time])?;
-        self.str_attr(&crank, "units", "degree")?;
-        self.str_attr(&crank, "long_name", "crank angle")?;
+        // The dimension is the crank angle (exact grid values shared by both methods, so that
+        // `.sel(crank_angle=90)` and `rigorous - mobility` work); time is an auxiliary coordinate.
+        let crank = self.coordinate(&g, "crank_angle", &m.crank_angle, "degree", "crank angle")?;
+        let time = self.variable(&g, "time", &m.time, &[&crank])?;
+        self.str_attr(&time, "units", "s")?;
+        self.str_attr(&time, "long_name", "time within the cycle")?;
         for s in &m.series {
-            let ds = self.variable(&g, &s.name, &s.values, &[&time])?;
+            let ds = self.variable(&g, &s.name, &s.values, &[&crank])?;
             self.str_attr(&ds, "units", &s.units)?;
             self.str_attr(&ds, "long_name", &s.long_name)?;
-            self.str_attr(&ds, "coordinates", "crank_angle")?;
+            self.str_attr(&ds, "coordinates", "time")?;
         }
         if let Some(f) = &m.fields {
             self.write_fields(&g, name, f)?;
@@ -317,10 +345,22 @@ impl FileWriter {
             "film fields on the (theta, z) grid at the stored instants of the final cycle; theta \
              is periodic (theta = 2 pi is theta = 0, not repeated)",
         )?;
-        let time = self.coordinate(&g, "time", &f.time, "s", "time of the stored instant")?;
-        let crank = self.variable(&g, "crank_angle", &f.crank_angle, &[&time])?;
-        self.str_attr(&crank, "units", "degree")?;
-        self.str_attr(&crank, "long_name", "crank angle")?;
+        // Its own dimension name: a child group may not reuse its parent's `time` with another
+        // length (xarray's DataTree requires every group aligned with its parents).
+        let crank = self.coordinate(
+            &g,
+            "field_crank_angle",
+            &f.crank_angle,
+            "degree",
+            "crank angle of the stored instant",
+        )?;
+        let time = self.variable(&g, "field_time", &f.time, &[&crank])?;
+        self.str_attr(&time, "units", "s")?;
+        self.str_attr(
+            &time,
+            "long_name",
+            "time within the cycle of the stored instant",
+        )?;
         let theta = self.coordinate(
             &g,
             "theta",
@@ -348,11 +388,13 @@ impl FileWriter {
                 .create(fld.name.as_str())
                 .map_err(self.err(ctx))?;
             debug_assert_eq!(ds.shape(), vec![nt, nth, nz]);
-            self.attach(&ds, &[&time, &theta, &z], &fld.name)?;
+            self.attach(&ds, &[&crank, &theta, &z], &fld.name)?;
             self.str_attr(&ds, "units", &fld.units)?;
             self.str_attr(&ds, "long_name", &fld.long_name)?;
-            self.str_attr(&ds, "coordinates", "crank_angle")?;
+            self.str_attr(&ds, "coordinates", "field_time")?;
         }
+        self.str_attr(&theta, "axis", "X")?;
+        self.str_attr(&z, "axis", "Y")?;
         Ok(())
     }
 
@@ -396,13 +438,14 @@ impl FileWriter {
             "description",
             "cycle figures per method; mobility deviation = (mobility - rigorous) / |rigorous|",
         )?;
+        // Not `method`: xarray's `.sel(method=…)` would take it for its own keyword.
         let labels: Vec<VarLenUnicode> = Method::ALL.iter().map(|m| vlen(m.as_str())).collect();
         let method = g
             .new_dataset_builder()
             .with_data(&labels[..])
-            .create("method")
-            .map_err(self.err("summary/method"))?;
-        self.make_scale(&method, "method")?;
+            .create("solution_method")
+            .map_err(self.err("summary/solution_method"))?;
+        self.make_scale(&method, "solution_method")?;
         self.str_attr(&method, "long_name", "solution method")?;
         for row in &r.summary {
             let values: Vec<f64> = Method::ALL

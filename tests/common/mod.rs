@@ -129,7 +129,11 @@ fn method_result(method: Method, scale: f64, with_fields: bool) -> MethodResult 
         (names::SUPPLY_FLOW, "supply flow", "m3 s-1"),
         (names::SIDE_LEAKAGE, "side leakage", "m3 s-1"),
         (names::POWER_LOSS, "power loss", "W"),
-        (names::ATTITUDE_ANGLE, "attitude angle", "rad"),
+        (
+            names::ATTITUDE_ANGLE,
+            jbearing::run::ATTITUDE_LONG_NAME,
+            "rad",
+        ),
     ];
     let series = meta
         .iter()

@@ -6,14 +6,17 @@ Run by tests/output.rs in a fresh virtualenv (examples/python/requirements.txt):
 
 CASE.expected holds what the Rust side wrote, one line per array: `key v1 v2 ...` (f64 printed
 shortest-round-trip, so the comparison is exact). Asserts named dimensions and coordinates,
-units, the values read back through xarray (h5netcdf engine), and that pyvista reads the VTKHDF
-surface with one point per (theta, z) node and the pressure of every stored instant.
+units, the values read back through xarray (h5netcdf engine), the whole file as one xarray
+DataTree with both engines (h5netcdf, netcdf4) selected by method, by crank angle and by field
+instant, the CF-1.10 metadata (cf_xarray), and that pyvista reads the VTKHDF surface with one
+point per (theta, z) node and the pressure of every stored instant.
 Prints one line per check and exits non-zero on the first failure.
 """
 
 import sys
 import warnings
 
+import cf_xarray  # noqa: F401  (registers the .cf accessor)
 import numpy as np
 import pyvista as pv
 import xarray as xr
@@ -58,9 +61,9 @@ def main(path, expected_path):
 
     for method in ("rigorous", "mobility"):
         ds = xr.open_dataset(path, engine="h5netcdf", group=method)
-        check(tuple(ds.dims) == ("time",), f"{method}: one dimension, named time")
-        check("time" in ds.coords and "crank_angle" in ds.coords,
-              f"{method}: time and crank_angle are coordinates")
+        check(tuple(ds.dims) == ("crank_angle",), f"{method}: one dimension, named crank_angle")
+        check("time" in ds.coords and "crank_angle" in ds.indexes,
+              f"{method}: crank_angle indexes, time is a coordinate")
         check(ds["time"].dtype == np.float64, f"{method}: time stays float seconds")
         check(ds["time"].attrs["units"] == "s", f"{method}: time units s")
         check(ds["crank_angle"].attrs["units"] == "degree", f"{method}: crank angle in degree")
@@ -73,34 +76,41 @@ def main(path, expected_path):
         check(sorted(ds.data_vars) == series, f"{method}: exactly the written series")
         for name in series:
             v = ds[name]
-            check(v.dims == ("time",) and v.attrs.get("units") and v.attrs.get("long_name"),
-                  f"{method}/{name}: dims (time,), units and long_name")
+            check(v.dims == ("crank_angle",) and v.attrs.get("units") and v.attrs.get("long_name"),
+                  f"{method}/{name}: dims (crank_angle,), units and long_name")
             check(np.array_equal(v.values, exp[f"{method}/{name}"]), f"{method}/{name}: values")
         check(ds["load_x"].attrs["units"] == "N" and ds["min_film_thickness"].attrs["units"] == "m"
               and ds["supply_flow"].attrs["units"] == "m3 s-1", f"{method}: SI units")
 
     f = xr.open_dataset(path, engine="h5netcdf", group="rigorous/fields")
-    nt, nth, nz = (len(exp["rigorous/fields/time"]), len(exp["rigorous/fields/theta"]),
+    nt, nth, nz = (len(exp["rigorous/fields/field_time"]), len(exp["rigorous/fields/theta"]),
                    len(exp["rigorous/fields/z"]))
-    check(dict(f.sizes) == {"time": nt, "theta": nth, "z": nz}, "fields: sizes of time, theta, z")
-    check(f["pressure"].dims == ("time", "theta", "z"), "pressure dims (time, theta, z)")
+    check(dict(f.sizes) == {"field_crank_angle": nt, "theta": nth, "z": nz},
+          "fields: sizes of field_crank_angle, theta, z")
+    check(f["pressure"].dims == ("field_crank_angle", "theta", "z"),
+          "pressure dims (field_crank_angle, theta, z)")
     check(f["theta"].attrs["units"] == "rad" and f["z"].attrs["units"] == "m"
           and f["pressure"].attrs["units"] == "Pa", "fields: units")
-    for c in ("time", "theta", "z"):
+    for c in ("field_time", "field_crank_angle", "theta", "z"):
         check(np.array_equal(f[c].values, exp[f"rigorous/fields/{c}"]), f"fields: {c} values")
     for name in ("pressure", "film_thickness"):
         check(np.array_equal(f[name].values.ravel(), exp[f"rigorous/fields/{name}"]),
               f"fields: {name} values")
     # Label-based selection works because the dimensions carry coordinates.
     p = f["pressure"].sel(theta=np.pi, z=0.0, method="nearest")
-    check(p.dims == ("time",) and p.sizes["time"] == nt, "sel by theta and z gives a time series")
+    check(p.dims == ("field_crank_angle",) and p.sizes["field_crank_angle"] == nt,
+          "sel by theta and z gives a series over the stored instants")
 
     s = xr.open_dataset(path, engine="h5netcdf", group="summary")
-    check(list(s["method"].values) == ["rigorous", "mobility"], "summary: method coordinate")
+    check(list(s["solution_method"].values) == ["rigorous", "mobility"],
+          "summary: solution_method coordinate")
     for key, vals in exp.items():
         if key.startswith("summary/"):
             name = key.split("/", 1)[1]
             check(np.array_equal(s[name].values, vals, equal_nan=True), f"summary/{name} values")
+
+    check_datatree(path, exp)
+    check_cf(path)
 
     # pyvista: the VTKHDF group of the same file.
     mesh = pv.read(path, force_ext=".vtkhdf")
@@ -121,6 +131,59 @@ def main(path, expected_path):
         step = pv.wrap(reader.GetOutput())
         check(np.array_equal(step.point_data["pressure"], p_all[k]), f"VTK step {k}: pressure")
     print("all checks passed")
+
+
+def check_datatree(path, exp):
+    """The whole file as one DataTree, with both engines: every group aligned with its parents,
+    selections by method, by exact crank angle and by field instant, and rigorous - mobility in
+    one line (both methods on the same crank grid)."""
+    crank = exp["rigorous/crank_angle"]
+    angle = float(crank[len(crank) // 2])  # a whole number of degrees in the fixture
+    field_angle = float(exp["rigorous/fields/field_crank_angle"][-1])
+    for engine, kwargs in (("h5netcdf", {"phony_dims": "sort"}), ("netcdf4", {})):
+        tree = xr.open_datatree(path, engine=engine, **kwargs)
+        check({"rigorous", "mobility", "summary", "rigorous/fields"} <= set(
+            g.lstrip("/") for g in tree.groups), f"DataTree ({engine}): the groups")
+        row = tree["summary"].dataset.sel(solution_method="rigorous")
+        check(row["min_film_thickness_min"].size == 1
+              and float(row["min_film_thickness_min"]) == exp["summary/min_film_thickness_min"][0],
+              f"DataTree ({engine}): sel(solution_method='rigorous') is one row")
+        rig = tree["rigorous"].dataset
+        mob = tree["mobility"].dataset
+        k = int(np.flatnonzero(crank == angle)[0])
+        check(float(rig["min_film_thickness"].sel(crank_angle=angle))
+              == exp["rigorous/min_film_thickness"][k],
+              f"DataTree ({engine}): sel(crank_angle={angle:g}) by exact value")
+        diff = rig["min_film_thickness"] - mob["min_film_thickness"]
+        check(diff.sizes == {"crank_angle": len(crank)} and not bool(diff.isnull().any()),
+              f"DataTree ({engine}): rigorous - mobility aligned on the shared crank grid")
+        snap = tree["rigorous/fields"].dataset["pressure"].sel(field_crank_angle=field_angle)
+        check(snap.dims == ("theta", "z"),
+              f"DataTree ({engine}): sel(field_crank_angle={field_angle:g}) is one instant")
+
+
+def check_cf(path):
+    """CF-1.10 metadata as cf_xarray reads it."""
+    root = xr.open_dataset(path, engine="h5netcdf")
+    check(root.attrs["Conventions"] == "CF-1.10", "CF: global Conventions")
+    for key in ("title", "source", "history"):
+        check(bool(root.attrs.get(key)), f"CF: global {key}")
+    f = xr.open_dataset(path, engine="h5netcdf", group="rigorous/fields")
+    check(f.cf.axes.get("X") == ["theta"] and f.cf.axes.get("Y") == ["z"],
+          "CF: theta and z carry axis X and Y")
+    params = xr.open_dataset(path, engine="h5netcdf", group="parameters")
+    flags = [v for v in params.data_vars.values() if "flag_meanings" in v.attrs]
+    check(len(flags) > 0 and all(list(v.attrs["flag_values"]) == [0, 1] for v in flags),
+          "CF: every flag has flag_values with its flag_meanings")
+    for group in ("rigorous", "mobility", "rigorous/fields", "summary"):
+        ds = xr.open_dataset(path, engine="h5netcdf", group=group)
+        for name, v in ds.variables.items():
+            if v.dtype.kind == "f":
+                check("units" in v.attrs and "long_name" in v.attrs,
+                      f"CF: {group}/{name} has units and long_name")
+    rig = xr.open_dataset(path, engine="h5netcdf", group="rigorous")
+    check("from the bearing frame's +x axis" in rig["attitude_angle"].attrs["long_name"],
+          "the attitude angle names its reference direction")
 
 
 if __name__ == "__main__":

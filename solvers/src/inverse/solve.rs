@@ -247,7 +247,9 @@ where
                 crank_angle_deg: crank,
                 cycle,
             };
-            let capture = params.field_stride > 0 && i % params.field_stride == 0;
+            // Steps end at crank angles (i + 1)·Δ: capturing at the ends of strides puts the
+            // snapshots at stride·Δ, 2·stride·Δ, …, including the cycle's end (= its start).
+            let capture = params.field_stride > 0 && (i + 1) % params.field_stride == 0;
             let step = orbit.march_step(&mut stepper, film, dt, &drive, at, capture)?;
             if let Some(fields) = step.fields {
                 snapshots.push(FieldSnapshot {

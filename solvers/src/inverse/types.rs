@@ -74,7 +74,9 @@ pub struct InverseParams {
     /// Periodicity tolerance on the change of the film field over a cycle (max |Δφ|, default
     /// 1e-3).
     pub film_state_tolerance: f64,
-    /// Keep the fields of the final cycle every `field_stride` steps (0 = none, default).
+    /// Keep the fields of the final cycle every `field_stride` steps (0 = none, default): after
+    /// steps field_stride, 2·field_stride, … (the last step of the cycle among them when the
+    /// stride divides the steps per cycle).
     pub field_stride: usize,
 }
 
