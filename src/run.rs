@@ -486,6 +486,7 @@ pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> Me
     }
     let info = &sol.info;
     MethodResult {
+        period: Some(case.period()),
         method: Method::Rigorous,
         time,
         crank_angle,
@@ -839,6 +840,7 @@ fn mobility_result(
         ),
     ];
     MethodResult {
+        period: Some(case.period()),
         method: Method::Mobility,
         time,
         crank_angle: crank,

@@ -161,6 +161,7 @@ fn fd_reynolds_row_from_a_steady_rigorous_result() {
     let n = 5;
     let constant = |v: f64| vec![v; n];
     let rig = MethodResult {
+        period: None,
         method: Method::Rigorous,
         time: (0..n).map(|k| k as f64 * 0.01).collect(),
         crank_angle: (0..n).map(|k| k as f64 * 30.0).collect(),

@@ -233,6 +233,37 @@ fn cycle_mean_is_time_weighted() {
     assert!((row.mobility.unwrap() - 3.5).abs() < 1e-14);
 }
 
+/// On a periodic cycle (the end point not repeated) the mean covers the whole period: for
+/// samples of 2 + cos(2πt/τ) + 0.5 sin(4πt/τ) at 8 equally spaced instants the trapezoidal rule
+/// is exact (a trigonometric polynomial of degree below 8), so the mean is 2; without the wrap
+/// interval (the samples taken as an open span) it is (16 − (v₀ + v₇)/2)/7 = 1.9138.
+#[test]
+fn cycle_mean_of_a_periodic_cycle_covers_the_period() {
+    use std::f64::consts::TAU;
+    let tau = 0.04;
+    let mut m = common::report("mean").methods.remove(1);
+    m.time = (0..8).map(|k| tau * k as f64 / 8.0).collect();
+    m.crank_angle = (0..8).map(|k| 45.0 * k as f64).collect();
+    m.series = vec![jbearing::output::Series::new(
+        "power_loss",
+        "power loss",
+        "W",
+        m.time
+            .iter()
+            .map(|t| 2.0 + (TAU * t / tau).cos() + 0.5 * (2.0 * TAU * t / tau).sin())
+            .collect(),
+    )];
+    m.period = Some(tau);
+    assert!((m.reduce("power_loss", Reduction::Mean).unwrap() - 2.0).abs() < 1e-14);
+    m.period = None;
+    let open = m.reduce("power_loss", Reduction::Mean).unwrap();
+    let v7 = 2.0 + (7.0 * TAU / 8.0).cos() + 0.5 * (7.0 * TAU / 4.0).sin();
+    assert!(
+        (open - (16.0 - 0.5 * (3.0 + v7)) / 7.0).abs() < 1e-12,
+        "{open}"
+    );
+}
+
 #[test]
 fn a_steady_single_method_report_is_written_too() {
     // The steady JB1 case: rigorous only, one sample, no fields. Every writer copes: the HDF5

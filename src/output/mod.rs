@@ -334,6 +334,10 @@ pub struct MethodResult {
     /// Numbers that describe the solve (cycles to periodicity, Newton iterations, …); written
     /// as attributes of the method's group.
     pub solver_info: Vec<(String, ParameterValue)>,
+    /// The load cycle's period τ (s) when the samples are a periodic cycle with the end point
+    /// not repeated (what `jbearing run` writes: crank angles 0, Δ, …, cycle − Δ); `None` for
+    /// samples that are not periodic.
+    pub period: Option<f64>,
 }
 
 impl MethodResult {
@@ -369,9 +373,12 @@ impl MethodResult {
     }
 
     /// A cycle figure of the series `name`: its minimum, maximum, or time mean. The mean is
-    /// the trapezoidal integral over the stored time span divided by that span, so that
-    /// non-uniform sampling (an adaptive integrator's steps) is weighted correctly; a single
-    /// sample is its own mean. `None` if the series is absent.
+    /// the trapezoidal integral divided by the time it covers, so that non-uniform sampling is
+    /// weighted correctly: over the whole period for a periodic cycle ([`Self::period`]: the
+    /// interval from the last sample back to the first, one period later, included — on a
+    /// uniform grid this is the plain average, exact for trigonometric polynomials of degree
+    /// below the number of samples), over the stored span otherwise; a single sample is its
+    /// own mean. `None` if the series is absent.
     pub fn reduce(&self, name: &str, how: Reduction) -> Option<f64> {
         let v = &self.series(name)?.values;
         if v.is_empty() {
@@ -386,12 +393,18 @@ impl MethodResult {
                 if v.len() < 2 || span <= 0.0 {
                     v[0]
                 } else {
-                    let integral: f64 = t
+                    let mut integral: f64 = t
                         .windows(2)
                         .zip(v.windows(2))
                         .map(|(tw, vw)| 0.5 * (vw[0] + vw[1]) * (tw[1] - tw[0]))
                         .sum();
-                    integral / span
+                    let mut covered = span;
+                    if let Some(period) = self.period.filter(|p| *p > span) {
+                        let wrap = period - span;
+                        integral += 0.5 * (v[v.len() - 1] + v[0]) * wrap;
+                        covered = period;
+                    }
+                    integral / covered
                 }
             }
         })

@@ -182,6 +182,7 @@ fn method_result(method: Method, scale: f64, with_fields: bool) -> MethodResult 
         crank_angle: crank,
         series,
         fields,
+        period: None,
         solver_info: vec![
             ("cycles".into(), ParameterValue::Integer(3)),
             (
