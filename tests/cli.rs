@@ -120,7 +120,13 @@ fn shipped_cases_pass_check() {
 }
 
 fn assert_case_files(dir: &Path, name: &str) {
-    for suffix in [".h5", "_cycle.png", "_orbit.png", "_summary.csv"] {
+    for suffix in [
+        ".h5",
+        "_cycle.png",
+        "_orbit.png",
+        "_load.png",
+        "_summary.csv",
+    ] {
         let p = dir.join(format!("{name}{suffix}"));
         let len = std::fs::metadata(&p)
             .unwrap_or_else(|e| panic!("{}: {e}", p.display()))
@@ -791,7 +797,7 @@ fn progress_is_plain_lines_without_a_terminal() {
         "] flores2006_mobility: rigorous: cycle 2 done, |Δε| from the previous cycle ",
         "] flores2006_mobility: rigorous: done",
         "] flores2006_mobility: mobility: done",
-        "] flores2006_mobility: done, 4 files",
+        "] flores2006_mobility: done, 5 files",
     ] {
         assert!(stderr.contains(event), "no '{event}' in\n{stderr}");
     }

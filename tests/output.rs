@@ -8,8 +8,9 @@ mod common;
 use std::path::Path;
 
 use jbearing::output::{
-    CaseReport, CsvSummaryWriter, Hdf5Writer, Method, OutputError, OutputWriter, PlotWriter,
-    Reduction, SummaryRow, standard_writers, write_atomically,
+    CaseReport, CsvSummaryWriter, Hdf5Writer, Method, ORBIT_LEGEND_WIDTH, OutputError,
+    OutputWriter, ParameterValue, PlotWriter, Reduction, SummaryRow, names, standard_writers,
+    write_atomically,
 };
 
 /// Width and height from a PNG's IHDR chunk.
@@ -30,9 +31,23 @@ fn plots_and_csv_summary_are_written() {
     let report = common::report("plots");
     let writer = PlotWriter::default();
     let paths = writer.write(&report, dir.path()).unwrap();
-    assert_eq!(paths, PlotWriter::file_paths(&report, dir.path()).to_vec());
+    assert_eq!(paths, PlotWriter::file_paths(&report, dir.path()));
+    assert_eq!(paths.len(), 4, "cycle, orbit, load diagram, film map");
     assert_eq!(png_size(&paths[0]), writer.cycle_size);
-    assert_eq!(png_size(&paths[1]), (writer.orbit_size, writer.orbit_size));
+    // The orbit and the load diagram: a square chart under a 50 px title (no warning), the
+    // orbit with its legend strip beside it.
+    assert_eq!(
+        png_size(&paths[1]),
+        (
+            writer.orbit_size + ORBIT_LEGEND_WIDTH,
+            writer.orbit_size + 50
+        )
+    );
+    assert_eq!(
+        png_size(&paths[2]),
+        (writer.orbit_size, writer.orbit_size + 50)
+    );
+    assert_eq!(png_size(&paths[3]), writer.film_size);
 
     let csv_paths = CsvSummaryWriter.write(&report, dir.path()).unwrap();
     let mut rdr = csv::Reader::from_path(&csv_paths[0]).unwrap();
@@ -71,7 +86,13 @@ fn plots_and_csv_summary_are_written() {
     names.sort();
     assert_eq!(
         names,
-        ["plots_cycle.png", "plots_orbit.png", "plots_summary.csv"]
+        [
+            "plots_cycle.png",
+            "plots_film.png",
+            "plots_load.png",
+            "plots_orbit.png",
+            "plots_summary.csv"
+        ]
     );
 }
 
@@ -165,13 +186,14 @@ fn writers_behind_one_trait() {
     for w in &writers {
         written.extend(w.write(&report, dir.path()).unwrap());
     }
-    assert_eq!(written.len(), 4);
+    // CASE.h5, four figures (cycle, orbit, load diagram, film map), CASE_summary.csv.
+    assert_eq!(written.len(), 6);
     assert!(written.iter().all(|p| p.exists()));
     // A second run over the same directory replaces the files (rename over the old ones).
     for w in &writers {
         w.write(&report, dir.path()).unwrap();
     }
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 4);
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 6);
 }
 
 #[test]
@@ -208,7 +230,8 @@ fn batch_threads_write_cases_in_parallel() {
             .clone();
         assert_eq!(&back, want);
     }
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 16);
+    // Four cases × (CASE.h5, four figures, CASE_summary.csv).
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 24);
 }
 
 #[test]
@@ -323,4 +346,84 @@ fn large_case_text_is_kept_whole() {
     let back: hdf5_metno::types::VarLenUnicode =
         f.attr("case_text").unwrap().read_scalar().unwrap();
     assert_eq!(back.as_str(), r.case_text);
+}
+
+/// The RGB pixels of a PNG, row by row.
+fn png_pixels(path: &Path) -> (u32, u32, Vec<[u8; 3]>) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let step = info.color_type.samples();
+    let pixels = buf[..info.buffer_size()]
+        .chunks(step)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    (info.width, info.height, pixels)
+}
+
+/// Pixels of exactly `rgb` in the rows `rows` of an image.
+fn count_color(path: &Path, rgb: [u8; 3], rows: std::ops::Range<u32>) -> usize {
+    let (w, _, px) = png_pixels(path);
+    px.iter()
+        .enumerate()
+        .filter(|(k, p)| rows.contains(&((*k as u32) / w)) && **p == rgb)
+        .count()
+}
+
+/// What the viewer must know is in the picture: a result that is not periodic puts a red
+/// CAUTION line under the title of every figure (none for a periodic one); an intermittent feed
+/// shades its window in every panel of the cycle figure (none for a constant feed); the orbit
+/// and load diagrams have the title block's height on top of a square chart.
+#[test]
+fn plots_mark_what_the_viewer_must_know() {
+    const WARN_RED: [u8; 3] = [200, 20, 20];
+    const FEED_SHADE: [u8; 3] = [255, 236, 200];
+    let dir = tempfile::tempdir().unwrap();
+    let writer = PlotWriter::default();
+    let ok = common::report("ok");
+    let paths = writer.write(&ok, dir.path()).unwrap();
+    for p in &paths {
+        assert_eq!(count_color(p, WARN_RED, 0..90), 0, "{}", p.display());
+    }
+    assert_eq!(
+        count_color(&paths[0], FEED_SHADE, 0..writer.cycle_size.1),
+        0
+    );
+
+    let mut bad = common::report("bad");
+    bad.methods[0]
+        .solver_info
+        .push(("periodic".into(), ParameterValue::Flag(false)));
+    // The feed is open for the first quarter of the cycle only.
+    let m = &mut bad.methods[0];
+    let crank = m.crank_angle.clone();
+    let feed = m
+        .series
+        .iter_mut()
+        .find(|s| s.name == names::FEED_PRESSURE)
+        .unwrap();
+    for (v, c) in feed.values.iter_mut().zip(&crank) {
+        *v = if *c < 90.0 { 2e5 } else { 0.0 };
+    }
+    let paths = writer.write(&bad, dir.path()).unwrap();
+    for p in &paths {
+        let red = count_color(p, WARN_RED, 0..90);
+        assert!(
+            red > 100,
+            "{}: {red} red pixels in the title block",
+            p.display()
+        );
+    }
+    let (w, h, _) = png_pixels(&paths[1]);
+    assert_eq!(
+        (w, h),
+        (
+            writer.orbit_size + ORBIT_LEGEND_WIDTH,
+            writer.orbit_size + 84
+        )
+    );
+    let shade = count_color(&paths[0], FEED_SHADE, 0..writer.cycle_size.1);
+    // Six panels minus the feed panel's own curve area: each shades a quarter of ~600 × 330 px.
+    assert!(shade > 5 * 20_000, "{shade} shaded pixels");
 }

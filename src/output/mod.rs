@@ -47,7 +47,7 @@ pub mod vtkhdf;
 pub use self::closed_form::{ClosedFormRow, ClosedFormTable};
 pub use self::csv_summary::CsvSummaryWriter;
 pub use self::hdf5::Hdf5Writer;
-pub use self::plots::PlotWriter;
+pub use self::plots::{ORBIT_LEGEND_WIDTH, PlotWriter, feed_windows, label_indices};
 
 use std::collections::HashSet;
 use std::fmt;

@@ -146,12 +146,20 @@ fn method_result(method: Method, scale: f64, with_fields: bool) -> MethodResult 
         let (theta, z) = (theta_grid(), z_grid());
         let mut p = Array3::zeros((N_INSTANTS, N_THETA, N_Z));
         let mut h = Array3::zeros((N_INSTANTS, N_THETA, N_Z));
+        // Film content: full film (1) where the half film carries pressure, else a film
+        // fraction falling with the gap, h_min / h.
+        let mut content = Array3::zeros((N_INSTANTS, N_THETA, N_Z));
         for (k, &c) in icrank.iter().enumerate() {
             let (eps, psi) = eccentricity(c, scale);
             for (i, &th) in theta.iter().enumerate() {
                 for (j, &zz) in z.iter().enumerate() {
                     p[[k, i, j]] = pressure(eps, psi, th, zz);
                     h[[k, i, j]] = CLEARANCE * (1.0 - eps * (th - psi).cos());
+                    content[[k, i, j]] = if p[[k, i, j]] > 0.0 {
+                        1.0
+                    } else {
+                        (1.0 - eps) / (1.0 - eps * (th - psi).cos())
+                    };
                 }
             }
         }
@@ -172,6 +180,12 @@ fn method_result(method: Method, scale: f64, with_fields: bool) -> MethodResult 
                     long_name: "film thickness".into(),
                     units: "m".into(),
                     values: h,
+                },
+                Field {
+                    name: names::FILM_CONTENT.into(),
+                    long_name: "film content".into(),
+                    units: "1".into(),
+                    values: content,
                 },
             ],
         }
