@@ -16,7 +16,8 @@ use crate::case::compressor::Compressor;
 ///
 /// A case file (TOML, see cases/README.md) describes one bearing, its lubricant and its load,
 /// speed and feed-pressure histories. `jbearing run` solves it and writes CASE.h5 (open it with
-/// xarray or pyvista), CASE_cycle.png, CASE_orbit.png and CASE_summary.csv.
+/// xarray or pyvista), CASE_cycle.png, CASE_orbit.png, CASE_load.png (and CASE_film.png with
+/// rigorous fields) and CASE_summary.csv.
 ///
 /// Examples:
 ///   jbearing check cases/compressor_main.toml

@@ -557,7 +557,23 @@ fn legend_strip(
     x0: i32,
 ) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<_>| e.to_string();
-    let font = (FAMILY, 17).into_font();
+    // The largest font (17 px down to 12 px) at which every entry fits in the strip.
+    let available = area.dim_in_pixel().0 as i32 - x0;
+    let mut size = 17;
+    let font = loop {
+        let font = (FAMILY, size).into_font();
+        let mut width = 0;
+        for (label, _, _) in entries {
+            width += 64 + area
+                .estimate_text_size(label, &font.clone().into())
+                .map_err(e)?
+                .0 as i32;
+        }
+        if width <= available || size <= 12 {
+            break font;
+        }
+        size -= 1;
+    };
     let mut x = x0;
     for (label, color, mark) in entries {
         let y = 14;
