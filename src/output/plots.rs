@@ -564,10 +564,11 @@ fn legend_strip(
         let font = (FAMILY, size).into_font();
         let mut width = 0;
         for (label, _, _) in entries {
-            width += 64 + area
-                .estimate_text_size(label, &font.clone().into())
-                .map_err(e)?
-                .0 as i32;
+            width += 64
+                + area
+                    .estimate_text_size(label, &font.clone().into())
+                    .map_err(e)?
+                    .0 as i32;
         }
         if width <= available || size <= 12 {
             break font;
