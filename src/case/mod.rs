@@ -221,7 +221,7 @@ pub struct Case {
     pub methods: Methods,
     /// Closed-form models of the static-equilibrium table (empty: no table).
     pub closed_form_models: Vec<ClosedFormModel>,
-    /// Values far outside what journal bearings have (see [`plausibility_warnings`]).
+    /// Values far outside what journal bearings have (the ranges: [`PLAUSIBLE_CLEARANCE_RATIO`]).
     pub warnings: Vec<CaseWarning>,
 }
 

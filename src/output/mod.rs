@@ -236,7 +236,7 @@ pub struct RunInfo {
 
 impl RunInfo {
     /// Run information for this build: version from Cargo, commit recorded when the binary was
-    /// built (see [`build_commit`]).
+    /// built (`git describe` at build time; `"unknown"` outside a git checkout).
     pub fn for_this_build(wall_time: f64, started_utc: &str) -> Self {
         Self {
             jbearing_version: env!("CARGO_PKG_VERSION").to_string(),
