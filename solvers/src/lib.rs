@@ -40,3 +40,4 @@ pub mod slider_crank;
 pub mod squeeze_film;
 pub mod time_scheme;
 pub mod tridiagonal;
+pub mod viscosity;

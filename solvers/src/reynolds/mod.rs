@@ -116,6 +116,7 @@ use ndarray::Array2;
 use thiserror::Error;
 
 pub use crate::time_scheme::TimeScheme;
+use crate::viscosity::ViscosityModel;
 
 pub use steady_load::SteadyLoadInfo;
 
@@ -207,7 +208,20 @@ pub struct ReynoldsParams {
     pub max_newton_iterations: usize,
     /// Maximum Krylov iterations per frozen-switch solve.
     pub max_linear_iterations: usize,
+    /// Viscosity that varies with temperature along the film and with pressure (Vogel–Barus,
+    /// seed 003; [`crate::viscosity`]); `None`: the constant [`Self::viscosity`]. With a
+    /// pressure coefficient α > 0 a steady solve iterates the viscosity field (Picard) until no
+    /// node's μ changes by more than [`VISCOSITY_PICARD_TOLERANCE`]; time steps support
+    /// α = 0 only.
+    pub viscosity_model: Option<ViscosityModel>,
 }
+
+/// Relative change of the node viscosities below which the Picard iteration of a
+/// pressure-dependent viscosity stops: μ enters the pressure flux linearly, so the film's
+/// pressure is then consistent with its viscosity to about this relative accuracy.
+pub const VISCOSITY_PICARD_TOLERANCE: f64 = 1e-8;
+/// Most Picard iterations of a pressure-dependent viscosity per steady solve.
+pub const VISCOSITY_PICARD_MAX: usize = 200;
 
 impl ReynoldsParams {
     /// A plain bearing with the defaults: β = 1.5 GPa, p_amb = p_cav = 0, no grooves, default
@@ -229,6 +243,7 @@ impl ReynoldsParams {
             tolerance: 1e-10,
             max_newton_iterations: 100,
             max_linear_iterations: 400,
+            viscosity_model: None,
         }
     }
 }
@@ -343,6 +358,18 @@ pub enum ReynoldsError {
     EccentricityOutOfRange { magnitude: f64 },
     #[error("{what}")]
     Unsupported { what: &'static str },
+    /// The viscosity model is unusable.
+    #[error(transparent)]
+    Viscosity(#[from] crate::viscosity::ViscosityError),
+    /// The Picard iteration of a pressure-dependent viscosity did not converge.
+    #[error(
+        "pressure-dependent viscosity: Picard iteration not converged after {iterations} iterations (largest relative change of μ {change:.3e}, tolerance {tolerance:.1e})"
+    )]
+    ViscosityNotConverged {
+        iterations: usize,
+        change: f64,
+        tolerance: f64,
+    },
     #[error("{solver}: {detail}")]
     LinearSolve {
         solver: &'static str,
@@ -428,8 +455,12 @@ pub struct ReynoldsSolver {
     grid: Grid,
     stencil: Stencil,
     ws: AdiWorkspace,
-    /// μ per node (constant now; a field μ(θ, z) can be stored here later).
+    /// μ per node: the constant viscosity, or the viscosity model at each node's temperature
+    /// and at `viscosity_pressure` (set in `prepare`).
     viscosity_field: Vec<f64>,
+    /// Film pressure above p_cav per node at which a pressure-dependent viscosity is evaluated
+    /// (the last Picard iterate; empty: zero).
+    viscosity_pressure: Vec<f64>,
     k_theta: Vec<f64>,
     k_z: Vec<f64>,
     dirichlet: Vec<f64>,
@@ -497,10 +528,14 @@ impl ReynoldsSolver {
                 cavitation_pressure: params.cavitation_pressure,
             });
         }
+        if let Some(m) = &params.viscosity_model {
+            m.validate()?;
+        }
         let grid = Grid::new(&params, 0.0)?;
         let n = grid.len();
         Ok(Self {
             viscosity_field: vec![params.viscosity; n],
+            viscosity_pressure: Vec::new(),
             params,
             grid,
             stencil: Stencil::default(),
@@ -562,6 +597,15 @@ impl ReynoldsSolver {
         if self.params.supply != SupplyModel::Grooves {
             return Err(ReynoldsError::Unsupported {
                 what: "solve_step: the axial supply line at h_max is a steady model (use SupplyModel::Grooves)",
+            });
+        }
+        if self
+            .params
+            .viscosity_model
+            .is_some_and(|m| m.pressure_coefficient > 0.0)
+        {
+            return Err(ReynoldsError::Unsupported {
+                what: "solve_step: a pressure-dependent viscosity (α > 0) is supported in steady solves only; time steps take a temperature-dependent viscosity with α = 0",
             });
         }
         if !(input.dt > 0.0 && input.dt.is_finite()) {
@@ -848,7 +892,44 @@ impl ReynoldsSolver {
                 reason: "a steady film needs a surface speed (a pure squeeze has no steady state)",
             });
         }
-        self.solve_core(eccentricity_ratio, conditions, TimeTerm::Steady, None)
+        let alpha = self
+            .params
+            .viscosity_model
+            .map_or(0.0, |m| m.pressure_coefficient);
+        if alpha == 0.0 {
+            return self.solve_core(eccentricity_ratio, conditions, TimeTerm::Steady, None);
+        }
+        // Picard on the viscosity field: solve with μ at the last pressure, re-evaluate μ at the
+        // new pressure, until no node's μ moves by more than the tolerance. Every solve starts
+        // from the ambient-pressure viscosity μ₀(T): from below, Picard climbs monotonically to
+        // the low (physical) fixed point of p ∝ μ₀ exp(α p); a start from another film's
+        // pressure (the grid turns with ε under the supply line) could lie above the unstable
+        // high branch and run away.
+        let beta = self.params.bulk_modulus;
+        let n = self.grid.len();
+        self.viscosity_pressure = vec![0.0; n];
+        let mut warm = None;
+        let mut change = f64::INFINITY;
+        for _ in 0..VISCOSITY_PICARD_MAX {
+            let core = self.solve_core(eccentricity_ratio, conditions, TimeTerm::Steady, warm)?;
+            // The factor exp(α Δp) by which each node's μ would change at the new pressure.
+            change = core
+                .psi
+                .iter()
+                .zip(&self.viscosity_pressure)
+                .map(|(psi, p_old)| (alpha * (beta * psi.max(0.0) - p_old)).exp_m1().abs())
+                .fold(0.0, f64::max);
+            self.viscosity_pressure = core.psi.iter().map(|psi| beta * psi.max(0.0)).collect();
+            if change <= VISCOSITY_PICARD_TOLERANCE {
+                return Ok(core);
+            }
+            warm = Some((core.psi.clone(), core.g.clone()));
+        }
+        Err(ReynoldsError::ViscosityNotConverged {
+            iterations: VISCOSITY_PICARD_MAX,
+            change,
+            tolerance: VISCOSITY_PICARD_TOLERANCE,
+        })
     }
 
     fn set_grid(&mut self, theta0: f64) -> Result<(), ReynoldsError> {
@@ -905,6 +986,31 @@ impl ReynoldsSolver {
         let h = FilmThickness::new(grid, p.clearance, eps);
         let beta = p.bulk_modulus;
         let nz = grid.n_z;
+        if let Some(model) = &p.viscosity_model {
+            // θ from the supply in the direction of the surface motion: the supply line at
+            // h_max, else the first groove's centre, else (fed from the ends) h_max.
+            let supply = match (p.supply, p.grooves.first()) {
+                (SupplyModel::AxialLineAtMaxGap, _) | (SupplyModel::Grooves, None) => {
+                    (-eps[1]).atan2(-eps[0])
+                }
+                (SupplyModel::Grooves, Some(g)) => g.center_angle,
+            };
+            let sign = if conditions.journal_speed - conditions.bearing_speed < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            for k in 0..n {
+                let pressure = self.viscosity_pressure.get(k).copied().unwrap_or(0.0);
+                self.viscosity_field[k] = model.at_cell(
+                    grid.theta(k / nz),
+                    0.5 * grid.d_theta,
+                    supply,
+                    sign,
+                    pressure,
+                );
+            }
+        }
         for k in 0..n {
             let ie = (k / nz + 1) % grid.n_theta;
             let mu_e = 0.5 * (self.viscosity_field[k] + self.viscosity_field[ie * nz + k % nz]);

@@ -659,3 +659,73 @@ fn energy_identity_closes_with_the_grid() {
     }
     assert!(last < 5e-4, "{last:e}");
 }
+
+/// A viscosity model at one temperature whose μ₀ equals the constant viscosity solves the same
+/// film as the constant (the field path against the scalar path, to round-off); a pressure
+/// coefficient α > 0 (Picard) keeps the mass balance exact, carries more load at the same ε
+/// (the film is more viscous where it is pressurised), and the returned film is consistent
+/// with its own viscosity (one more Picard step would change no μ by more than the
+/// tolerance); time steps refuse α > 0.
+#[test]
+fn viscosity_model_field_and_picard() {
+    use crate::viscosity::{Temperature, ViscosityModel, Vogel};
+    let vogel = Vogel::seed003_iso_vg_680();
+    let t = 60.0;
+    let mut plain = grooved(LinearSolver::AdiKrylov);
+    plain.viscosity = vogel.viscosity(t);
+    let mut with_model = plain.clone();
+    with_model.viscosity_model = Some(ViscosityModel {
+        vogel,
+        temperature: Temperature::Constant(t),
+        pressure_coefficient: 0.0,
+    });
+    let eps = [0.6, -0.3];
+    let a = ReynoldsSolver::new(plain)
+        .unwrap()
+        .solve_steady(eps, &conditions(2e5))
+        .unwrap();
+    let b = ReynoldsSolver::new(with_model.clone())
+        .unwrap()
+        .solve_steady(eps, &conditions(2e5))
+        .unwrap();
+    let rel = (b.film_force[0] - a.film_force[0]).hypot(b.film_force[1] - a.film_force[1])
+        / a.film_force[0].hypot(a.film_force[1]);
+    assert!(rel < 1e-12, "field vs scalar viscosity: {rel}");
+
+    let mut piezo = with_model.clone();
+    piezo.viscosity_model = Some(ViscosityModel {
+        vogel,
+        temperature: Temperature::Constant(t),
+        pressure_coefficient: 0.02e-6,
+    });
+    let mut s = ReynoldsSolver::new(piezo).unwrap();
+    let c = s.solve_steady(eps, &conditions(2e5)).unwrap();
+    let w = |f: [f64; 2]| f[0].hypot(f[1]);
+    assert!(w(c.film_force) > w(a.film_force), "α > 0 carries more load");
+    let supply: f64 = c.supply_flow.iter().sum();
+    let leak = c.side_leakage[0] + c.side_leakage[1];
+    assert!(
+        ((supply - leak) / leak).abs() < 1e-6,
+        "mass balance {supply} vs {leak}"
+    );
+    // Self-consistency: μ at the returned pressure is the μ the film was solved with.
+    let alpha = 0.02e-6;
+    let worst = s
+        .viscosity_pressure
+        .iter()
+        .zip(c.pressure.iter())
+        .map(|(p_used, p)| (alpha * (p - p_used).abs()).exp_m1())
+        .fold(0.0, f64::max);
+    assert!(worst <= VISCOSITY_PICARD_TOLERANCE * 1.01, "{worst}");
+
+    let state = s.initial_state(eps);
+    let step = s.solve_step(
+        &state,
+        &StepInput {
+            eccentricity_ratio: eps,
+            dt: 1e-4,
+            conditions: conditions(2e5),
+        },
+    );
+    assert!(matches!(step, Err(ReynoldsError::Unsupported { .. })));
+}
