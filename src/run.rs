@@ -231,6 +231,7 @@ pub fn reynolds_params(case: &Case) -> ReynoldsParams {
             n_z: case.n_z,
         },
         time_scheme: case.solver.time_scheme,
+        viscosity_model: case.viscosity_model,
         ..ReynoldsParams::plain(
             case.radius,
             case.length,

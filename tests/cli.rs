@@ -27,7 +27,7 @@ fn text(b: &[u8]) -> String {
 }
 
 /// One bad case per kind the application must reject with a precise message.
-const KINDS: [&str; 16] = [
+const KINDS: [&str; 18] = [
     "syntax_error",
     "unknown_key",
     "missing_key",
@@ -44,6 +44,8 @@ const KINDS: [&str; 16] = [
     "feed_span",
     "speed_span",
     "no_supply",
+    "vogel_and_viscosity",
+    "vogel_without_temperature",
 ];
 
 #[test]

@@ -116,3 +116,60 @@ fn an_unterminated_quote_and_a_short_row_are_named() {
         "{message}"
     );
 }
+
+/// `[lubricant.vogel]` with a film temperature: the rigorous film gets the Vogel model, every
+/// other method μ₀ at the mean temperature (seed 003's T_m = (T_in + T_out)/2 for a linear
+/// rise), and the rise spans the converging half of the film unless `rise_span_deg` says
+/// otherwise.
+#[test]
+fn a_vogel_law_sets_the_viscosity_from_the_temperature() {
+    use jbearing_solvers::viscosity::{Temperature, Vogel};
+    let vogel = "\n[lubricant.vogel]\na_pa_s = 1.446e-4\nb_c = 917.1\nc_c = -70.0\n";
+    let text = |temperature: &str| {
+        CASE.replace("viscosity_pa_s = 0.02\n", "")
+            .replace("[operation]", &format!("{vogel}{temperature}\n[operation]"))
+    };
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("load.csv"),
+        "crank_angle_deg,load_x_n,load_y_n\n0,-1500,0\n180,-900,200\n",
+    )
+    .unwrap();
+    let path = dir.path().join("case.toml");
+    let law = Vogel {
+        a: 1.446e-4,
+        b: 917.1,
+        c: -70.0,
+    };
+    let mean = Case::from_text(&text("[lubricant.temperature]\nmean_c = 60.0\n"), &path)
+        .expect("a Vogel case");
+    assert_eq!(mean.viscosity, law.viscosity(60.0));
+    let m = mean.viscosity_model.expect("model");
+    assert_eq!(m.temperature, Temperature::Constant(60.0));
+    assert_eq!(m.pressure_coefficient, 0.0);
+    assert_eq!(
+        crate::run::reynolds_params(&mean).viscosity_model,
+        mean.viscosity_model
+    );
+    let rise = Case::from_text(
+        &text("[lubricant.temperature]\ninlet_c = 40.0\noutlet_c = 80.0\n"),
+        &path,
+    )
+    .expect("a linear rise");
+    assert_eq!(rise.viscosity, law.viscosity(60.0));
+    assert_eq!(
+        rise.viscosity_model.unwrap().temperature,
+        Temperature::LinearOverSpan {
+            inlet: 40.0,
+            outlet: 80.0,
+            span: std::f64::consts::PI
+        }
+    );
+    let cold = Case::from_text(&text("[lubricant.temperature]\nmean_c = -80.0\n"), &path)
+        .expect_err("below Vogel's c");
+    assert!(
+        cold.to_string()
+            .contains("lubricant.temperature: viscosity model: temperature = -80"),
+        "{cold}"
+    );
+}

@@ -24,6 +24,7 @@ use std::path::{Path, PathBuf};
 use jbearing_solvers::closed_form::{ClosedFormError, ClosedFormModel};
 use jbearing_solvers::mobility::{LoadInterpolation, TabulatedLoad};
 use jbearing_solvers::time_scheme::TimeScheme;
+use jbearing_solvers::viscosity::{Temperature, ViscosityModel, Vogel};
 
 pub use self::error::{CaseError, Locator};
 use self::schema::*;
@@ -183,8 +184,12 @@ pub struct Case {
     pub radial_clearance: f64,
     /// Feed grooves.
     pub grooves: Vec<Groove>,
-    /// Viscosity μ (Pa·s).
+    /// Viscosity μ (Pa·s): the constant, or μ₀ at the mean film temperature when
+    /// `viscosity_model` is given (what the mobility method and the closed forms use).
     pub viscosity: f64,
+    /// Temperature-dependent viscosity of the rigorous film (`[lubricant.vogel]`,
+    /// `[lubricant.temperature]`), α = 0.
+    pub viscosity_model: Option<ViscosityModel>,
     /// Bulk modulus β (Pa).
     pub bulk_modulus: f64,
     /// Cavitation pressure, gauge (Pa).
@@ -279,7 +284,12 @@ impl Case {
                 "m",
                 "radial clearance c",
             ),
-            Parameter::number("viscosity", self.viscosity, "Pa s", "dynamic viscosity"),
+            Parameter::number(
+                "viscosity",
+                self.viscosity,
+                "Pa s",
+                "dynamic viscosity (with a Vogel law: at the mean film temperature)",
+            ),
             Parameter::number(
                 "bulk_modulus",
                 self.bulk_modulus,
@@ -366,6 +376,39 @@ impl Case {
                 "time discretization of the rigorous film (bdf2, backward_euler, crank_nicolson)",
             ),
         ];
+        if let Some(m) = &self.viscosity_model {
+            p.push(Parameter::number(
+                "vogel_a",
+                m.vogel.a,
+                "Pa s",
+                "Vogel viscosity law mu0(T) = a exp(b / (T - c)): a",
+            ));
+            p.push(Parameter::number("vogel_b", m.vogel.b, "K", "Vogel b"));
+            p.push(Parameter::number("vogel_c", m.vogel.c, "degC", "Vogel c"));
+            match m.temperature {
+                Temperature::Constant(t) => p.push(Parameter::number(
+                    "film_temperature",
+                    t,
+                    "degC",
+                    "film temperature (constant)",
+                )),
+                Temperature::Linear { inlet, outlet }
+                | Temperature::LinearOverSpan { inlet, outlet, .. } => {
+                    p.push(Parameter::number(
+                        "inlet_temperature",
+                        inlet,
+                        "degC",
+                        "film temperature at the supply",
+                    ));
+                    p.push(Parameter::number(
+                        "outlet_temperature",
+                        outlet,
+                        "degC",
+                        "film temperature at the end of the rise",
+                    ));
+                }
+            }
+        }
         for (i, g) in self.grooves.iter().enumerate() {
             p.push(Parameter::number(
                 &format!("groove{i}_center_angle"),
@@ -815,7 +858,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
     }
 
     let l = &raw.lubricant;
-    let viscosity = ctx.positive("lubricant.viscosity_pa_s", l.viscosity_pa_s)?;
+    let (viscosity, viscosity_model) = resolve_viscosity(l, ctx)?;
     let bulk_modulus = ctx.positive("lubricant.bulk_modulus_pa", l.bulk_modulus_pa)?;
     let cavitation_pressure =
         ctx.finite("lubricant.cavitation_pressure_pa", l.cavitation_pressure_pa)?;
@@ -1204,6 +1247,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         radial_clearance,
         grooves,
         viscosity,
+        viscosity_model,
         bulk_modulus,
         cavitation_pressure,
         ambient_pressure,
@@ -1363,6 +1407,89 @@ fn plausibility_warnings(case: &Case, ctx: &Ctx<'_>) -> Vec<CaseWarning> {
         );
     }
     out
+}
+
+/// The constant viscosity, or Vogel's μ₀(T) with the film temperature: the model for the
+/// rigorous film and μ₀ at the mean temperature (T_m, or (T_in + T_out)/2 as seed 003 defines
+/// it) for the methods that take one viscosity.
+fn resolve_viscosity(
+    l: &LubricantSection,
+    ctx: &Ctx<'_>,
+) -> Result<(f64, Option<ViscosityModel>), CaseError> {
+    match (&l.viscosity_pa_s, &l.vogel, &l.temperature) {
+        (Some(_), Some(_), _) => Err(ctx.err(
+            "lubricant.vogel",
+            "give either viscosity_pa_s or [lubricant.vogel] (which sets the viscosity from the \
+             temperature), not both",
+        )),
+        (Some(mu), None, None) => Ok((ctx.positive("lubricant.viscosity_pa_s", *mu)?, None)),
+        (Some(_), None, Some(_)) => Err(ctx.err(
+            "lubricant.temperature",
+            "a film temperature needs [lubricant.vogel] (the viscosity–temperature law)",
+        )),
+        (None, None, _) => Err(ctx.err(
+            "lubricant.viscosity_pa_s",
+            "missing: give viscosity_pa_s, or [lubricant.vogel] with [lubricant.temperature]",
+        )),
+        (None, Some(_), None) => Err(ctx.err(
+            "lubricant.vogel",
+            "[lubricant.vogel] needs [lubricant.temperature] (mean_c, or inlet_c and outlet_c)",
+        )),
+        (None, Some(v), Some(t)) => {
+            let vogel = Vogel {
+                a: ctx.positive("lubricant.vogel.a_pa_s", v.a_pa_s)?,
+                b: ctx.finite("lubricant.vogel.b_c", v.b_c)?,
+                c: ctx.finite("lubricant.vogel.c_c", v.c_c)?,
+            };
+            let (temperature, mean) = match (t.mean_c, t.inlet_c, t.outlet_c) {
+                (Some(m), None, None) => {
+                    let m = ctx.finite("lubricant.temperature.mean_c", m)?;
+                    (Temperature::Constant(m), m)
+                }
+                (None, Some(i), Some(o)) => {
+                    let i = ctx.finite("lubricant.temperature.inlet_c", i)?;
+                    let o = ctx.finite("lubricant.temperature.outlet_c", o)?;
+                    let span = t.rise_span_deg;
+                    if !(span > 0.0 && span <= 360.0) {
+                        return Err(ctx.err(
+                            "lubricant.temperature.rise_span_deg",
+                            format!("must lie in (0, 360], got {span}"),
+                        ));
+                    }
+                    (
+                        Temperature::LinearOverSpan {
+                            inlet: i,
+                            outlet: o,
+                            span: span.to_radians(),
+                        },
+                        0.5 * (i + o),
+                    )
+                }
+                _ => {
+                    return Err(ctx.err(
+                        "lubricant.temperature",
+                        "give mean_c, or inlet_c and outlet_c (not both, not one of the pair)",
+                    ));
+                }
+            };
+            let model = ViscosityModel {
+                vogel,
+                temperature,
+                pressure_coefficient: 0.0,
+            };
+            if let Err(e) = model.validate() {
+                return Err(ctx.err("lubricant.temperature", e.to_string()));
+            }
+            let mu = vogel.viscosity(mean);
+            if !(mu > 0.0 && mu.is_finite()) {
+                return Err(ctx.err(
+                    "lubricant.vogel",
+                    format!("gives μ₀({mean} °C) = {mu} Pa·s, not a positive finite viscosity"),
+                ));
+            }
+            Ok((mu, Some(model)))
+        }
+    }
 }
 
 /// `[closed_form] models` (or `methods.closed_form = true`, meaning every model).

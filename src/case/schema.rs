@@ -90,7 +90,12 @@ pub struct GrooveSection {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LubricantSection {
-    pub viscosity_pa_s: f64,
+    /// Constant viscosity; absent when `vogel` gives μ(T).
+    pub viscosity_pa_s: Option<f64>,
+    /// Vogel's μ₀(T) = a exp(b / (T − c)) (seed 003).
+    pub vogel: Option<VogelSection>,
+    /// The film temperature for `vogel`.
+    pub temperature: Option<TemperatureSection>,
     #[serde(default = "default_bulk_modulus")]
     pub bulk_modulus_pa: f64,
     #[serde(default)]
@@ -99,6 +104,30 @@ pub struct LubricantSection {
     pub ambient_pressure_pa: f64,
     #[serde(default = "default_starved_film_fraction")]
     pub starved_film_fraction: f64,
+}
+
+/// `[lubricant.vogel]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VogelSection {
+    pub a_pa_s: f64,
+    pub b_c: f64,
+    pub c_c: f64,
+}
+
+/// `[lubricant.temperature]`: `mean_c`, or `inlet_c` and `outlet_c` (and `rise_span_deg`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TemperatureSection {
+    pub mean_c: Option<f64>,
+    pub inlet_c: Option<f64>,
+    pub outlet_c: Option<f64>,
+    #[serde(default = "default_rise_span_deg")]
+    pub rise_span_deg: f64,
+}
+
+fn default_rise_span_deg() -> f64 {
+    180.0
 }
 
 /// `[operation]`.

@@ -729,3 +729,54 @@ fn viscosity_model_field_and_picard() {
     );
     assert!(matches!(step, Err(ReynoldsError::Unsupported { .. })));
 }
+
+/// Time steps take the temperature-dependent field (α = 0): at one temperature the step equals
+/// the constant-viscosity step to round-off, and a linear rise (hotter, thinner oil downstream
+/// of the groove) carries less load than the constant at the inlet temperature and more than
+/// the constant at the outlet temperature.
+#[test]
+fn viscosity_field_in_time_steps() {
+    use crate::viscosity::{Temperature, ViscosityModel, Vogel};
+    let vogel = Vogel::seed003_iso_vg_680();
+    let step = |model: Option<ViscosityModel>, mu: f64| {
+        let mut p = grooved(LinearSolver::AdiKrylov);
+        p.viscosity = mu;
+        p.viscosity_model = model;
+        let mut s = ReynoldsSolver::new(p).unwrap();
+        let state = s.initial_state([0.5, -0.2]);
+        let (sol, _) = s
+            .solve_step(
+                &state,
+                &StepInput {
+                    eccentricity_ratio: [0.52, -0.22],
+                    dt: 2e-4,
+                    conditions: conditions(2e5),
+                },
+            )
+            .unwrap();
+        sol.film_force[0].hypot(sol.film_force[1])
+    };
+    let model = |temperature| {
+        Some(ViscosityModel {
+            vogel,
+            temperature,
+            pressure_coefficient: 0.0,
+        })
+    };
+    let constant = step(None, vogel.viscosity(60.0));
+    let field = step(model(Temperature::Constant(60.0)), vogel.viscosity(60.0));
+    assert!(
+        ((field - constant) / constant).abs() < 1e-12,
+        "{field} vs {constant}"
+    );
+    let rise = step(
+        model(Temperature::Linear {
+            inlet: 40.0,
+            outlet: 80.0,
+        }),
+        vogel.viscosity(60.0),
+    );
+    let cold = step(None, vogel.viscosity(40.0));
+    let hot = step(None, vogel.viscosity(80.0));
+    assert!(hot < rise && rise < cold, "{hot} < {rise} < {cold}");
+}
