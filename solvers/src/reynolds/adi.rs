@@ -46,7 +46,18 @@
 use super::ReynoldsError;
 use super::discretization::Stencil;
 use super::grid::{Grid, NodeKind};
+use super::multigrid::Multigrid;
 use crate::tridiagonal::{InterleavedFactors, LineWorkspace, cyclic_thomas_solve};
+
+/// The preconditioner of the flexible GMRES.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Preconditioner {
+    /// ADI line sweeps with the line-aggregate coarse correction (this module).
+    Adi,
+    /// A V-cycle of θ-semi-coarsening multigrid with zebra axial-line smoothing
+    /// ([`super::multigrid`]).
+    Multigrid,
+}
 
 /// Krylov subspace size before a restart.
 const RESTART: usize = 48;
@@ -72,6 +83,7 @@ pub(crate) struct AdiWorkspace {
     circumferential_factors: InterleavedFactors,
     axial_factors: InterleavedFactors,
     line: LineWorkspace,
+    multigrid: Multigrid,
 }
 
 /// Result of one frozen-switch iterative solve.
@@ -319,12 +331,18 @@ pub(crate) fn solve_krylov(
     tolerance: f64,
     flux_scale: Option<f64>,
     max_iterations: usize,
+    preconditioner: Preconditioner,
     ws: &mut AdiWorkspace,
 ) -> Result<KrylovInfo, ReynoldsError> {
     let n = grid.len();
     ws.ensure(n, grid.n_theta);
-    build_coarse(grid, st, ws);
-    factor_lines(grid, st, ws)?;
+    match preconditioner {
+        Preconditioner::Adi => {
+            build_coarse(grid, st, ws);
+            factor_lines(grid, st, ws)?;
+        }
+        Preconditioner::Multigrid => ws.multigrid.setup(grid, st)?,
+    }
     let mut iterations = 0;
     loop {
         let mut r = std::mem::take(&mut ws.r);
@@ -362,7 +380,10 @@ pub(crate) fn solve_krylov(
         for jj in 0..RESTART {
             let mut zj = std::mem::take(&mut ws.z[jj]);
             let vj = std::mem::take(&mut ws.v[jj]);
-            precondition(grid, st, &vj, &mut zj, ws)?;
+            match preconditioner {
+                Preconditioner::Adi => precondition(grid, st, &vj, &mut zj, ws)?,
+                Preconditioner::Multigrid => ws.multigrid.apply(&vj, &mut zj)?,
+            }
             ws.v[jj] = vj;
             let mut w = std::mem::take(&mut ws.v[jj + 1]);
             st.apply(grid, &zj, &mut w);

@@ -108,6 +108,7 @@ mod adi;
 mod discretization;
 mod film;
 mod grid;
+mod multigrid;
 mod oracle;
 mod outputs;
 mod steady_load;
@@ -158,6 +159,21 @@ pub enum LinearSolver {
     AdiKrylov,
     /// Sparse LU (faer), the test oracle.
     SparseLu,
+    /// θ-semi-coarsening multigrid V-cycle (zebra axial lines + circumferential cyclic lines,
+    /// Galerkin coarse levels) preconditioning FGMRES: Krylov iterations per solve nearly
+    /// independent of the grid (`multigrid` module docs).
+    MultigridKrylov,
+}
+
+impl LinearSolver {
+    /// The FGMRES preconditioner of an iterative choice (None for the direct oracle).
+    fn preconditioner(self) -> Option<adi::Preconditioner> {
+        match self {
+            LinearSolver::AdiKrylov => Some(adi::Preconditioner::Adi),
+            LinearSolver::MultigridKrylov => Some(adi::Preconditioner::Multigrid),
+            LinearSolver::SparseLu => None,
+        }
+    }
 }
 
 /// Grid size: n_theta nodes around (periodic), n_z nodes along including both ends.
@@ -771,8 +787,8 @@ impl ReynoldsSolver {
             }
             let mut x = std::mem::take(&mut self.sensitivity[c]);
             x.resize(n, 0.0);
-            match p.linear_solver {
-                LinearSolver::AdiKrylov => {
+            match p.linear_solver.preconditioner() {
+                Some(pc) => {
                     adi::solve_krylov(
                         grid,
                         &self.stencil,
@@ -780,10 +796,11 @@ impl ReynoldsSolver {
                         JACOBIAN_TOLERANCE.max(p.tolerance),
                         None,
                         p.max_linear_iterations,
+                        pc,
                         &mut self.ws,
                     )?;
                 }
-                LinearSolver::SparseLu => oracle::solve_lu(grid, &self.stencil, &mut x)?,
+                None => oracle::solve_lu(grid, &self.stencil, &mut x)?,
             }
             for i in 0..grid.n_theta {
                 let th = grid.theta(i);
@@ -1023,8 +1040,8 @@ impl ReynoldsSolver {
             }
             let linear_tolerance = if tight { p.tolerance } else { loose };
             let mut y = psi.clone();
-            match p.linear_solver {
-                LinearSolver::AdiKrylov => {
+            match p.linear_solver.preconditioner() {
+                Some(pc) => {
                     let info = adi::solve_krylov(
                         grid,
                         &self.stencil,
@@ -1032,11 +1049,12 @@ impl ReynoldsSolver {
                         linear_tolerance,
                         Some(scale),
                         p.max_linear_iterations,
+                        pc,
                         &mut self.ws,
                     )?;
                     newton.linear_iterations += info.iterations;
                 }
-                LinearSolver::SparseLu => oracle::solve_lu(grid, &self.stencil, &mut y)?,
+                None => oracle::solve_lu(grid, &self.stencil, &mut y)?,
             }
             if let Some(k) = y.iter().position(|x| !x.is_finite()) {
                 return Err(ReynoldsError::NonFinite {
