@@ -332,6 +332,7 @@ pub(crate) fn solve_krylov(
     flux_scale: Option<f64>,
     max_iterations: usize,
     preconditioner: Preconditioner,
+    switch: Option<&[f64]>,
     ws: &mut AdiWorkspace,
 ) -> Result<KrylovInfo, ReynoldsError> {
     let n = grid.len();
@@ -341,7 +342,7 @@ pub(crate) fn solve_krylov(
             build_coarse(grid, st, ws);
             factor_lines(grid, st, ws)?;
         }
-        Preconditioner::Multigrid => ws.multigrid.setup(grid, st)?,
+        Preconditioner::Multigrid => ws.multigrid.setup(grid, st, switch)?,
     }
     let mut iterations = 0;
     loop {
@@ -357,6 +358,9 @@ pub(crate) fn solve_krylov(
         }
         let target = tolerance * scale;
         if rmax <= target || scale == 0.0 {
+            if std::env::var("MG_TRACE").is_ok() {
+                eprintln!("TRACE it {iterations} tol {tolerance:e}");
+            }
             ws.r = r;
             return Ok(KrylovInfo { iterations });
         }
@@ -367,6 +371,9 @@ pub(crate) fn solve_krylov(
                 residual: rmax / scale,
                 tolerance,
             });
+        }
+        if std::env::var("MG_TRACE").is_ok() {
+            eprintln!("TRACE start/restart it {iterations} r/target {:e}", rmax / target);
         }
         // One GMRES cycle.
         let beta = dot(&r, &r).sqrt();

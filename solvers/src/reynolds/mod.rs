@@ -797,6 +797,7 @@ impl ReynoldsSolver {
                         None,
                         p.max_linear_iterations,
                         pc,
+                        Some(&lin.g),
                         &mut self.ws,
                     )?;
                 }
@@ -1050,6 +1051,7 @@ impl ReynoldsSolver {
                         Some(scale),
                         p.max_linear_iterations,
                         pc,
+                        Some(&g),
                         &mut self.ws,
                     )?;
                     newton.linear_iterations += info.iterations;

@@ -91,9 +91,9 @@ use super::discretization::Stencil;
 use super::grid::{Grid, NodeKind};
 use crate::tridiagonal::InterleavedFactors;
 
-/// Coarsening stops at the first level with n_θ odd or n_θ ≤ this; that level is solved by
-/// sparse LU (n_θ · n_z ≤ 16 · n_z unknowns: 15 × 31 on the default grid).
-pub(crate) const COARSEST_THETA: usize = 16;
+/// Coarsening stops at the first level with n_θ ≤ this; that level is solved by sparse LU
+/// (n_θ · n_z ≤ 8 · n_z unknowns: 8 × 31 on the default grid).
+pub(crate) const COARSEST_THETA: usize = 8;
 
 /// Index of the stencil entry of offset (dθ, dz) ∈ {−1, 0, 1}²: `3 (dθ + 1) + (dz + 1)`.
 const fn at(di: isize, dj: isize) -> usize {
@@ -200,37 +200,86 @@ fn wrap(i: usize, d: isize, n: usize) -> usize {
     ((i + n) as isize + d) as usize % n
 }
 
-/// The coarse activity mask: a coarse node is active if one of its three fine parents is.
+/// Number of coarse columns of a fine ring of `nt`: the even fine columns.
+#[inline(always)]
+pub(crate) fn coarse_len(nt: usize) -> usize {
+    nt.div_ceil(2)
+}
+
+/// The coarse parents of fine column f and their interpolation weights (the second is unused
+/// when the count is 1). Even f is coarse column f/2; odd f lies between (f−1)/2 and
+/// (f+1)/2 (mod n_c). For odd n_θ the last fine column n_θ−1 is even, and the coarse interval
+/// from it to column 0 is one fine step long (a non-uniform coarse ring; Galerkin does not
+/// mind).
+#[inline(always)]
+fn parents(f: usize, nt: usize) -> ([(usize, f64); 2], usize) {
+    let nc = coarse_len(nt);
+    if f % 2 == 0 {
+        ([(f / 2, 1.0), (0, 0.0)], 1)
+    } else {
+        ([((f - 1) / 2, 0.5), ((f + 1) / 2 % nc, 0.5)], 2)
+    }
+}
+
+/// The fine children of coarse column I (the nonzeros of column I of P) and their weights.
+#[inline(always)]
+fn children(ic: usize, nt: usize) -> ([(usize, f64); 3], usize) {
+    let mut out = [(2 * ic, 1.0), (0, 0.0), (0, 0.0)];
+    let mut count = 1;
+    if ic >= 1 {
+        out[count] = (2 * ic - 1, 0.5);
+        count += 1;
+    } else if nt % 2 == 0 {
+        out[count] = (nt - 1, 0.5);
+        count += 1;
+    }
+    if 2 * ic + 1 < nt {
+        out[count] = (2 * ic + 1, 0.5);
+        count += 1;
+    }
+    (out, count)
+}
+
+/// The coarse activity mask: coarse column I is active where its own fine node 2I is (so
+/// every active column of P has a node of weight 1 that no other column touches, and the
+/// columns of P are independent).
 fn coarse_mask(nt: usize, nz: usize, fmask: &[f64], cmask: &mut Vec<f64>) {
-    let nc = nt / 2;
+    let nc = coarse_len(nt);
     cmask.clear();
     cmask.resize(nc * nz, 0.0);
     for ic in 0..nc {
         for j in 0..nz {
-            let any = [-1isize, 0, 1]
-                .iter()
-                .any(|&d| fmask[wrap(2 * ic, d, nt) * nz + j] != 0.0);
-            cmask[ic * nz + j] = if any { 1.0 } else { 0.0 };
+            cmask[ic * nz + j] = fmask[2 * ic * nz + j];
         }
     }
 }
 
 /// Galerkin coarse operator A_c = R A P of the module docs (`fmask`, `cmask`: activity of the
-/// fine and coarse nodes). n_θ(fine) must be even and n_θ/2 ≥ 3.
+/// fine and coarse nodes). Needs n_c = ⌈n_θ/2⌉ ≥ 3.
 pub(crate) fn galerkin(fine: &Stencil9, fmask: &[f64], cmask: &[f64], coarse: &mut Stencil9) {
     let (nt, nz) = (fine.nt, fine.nz);
-    let nc = nt / 2;
-    debug_assert!(nt % 2 == 0 && nc >= 3);
+    let nc = coarse_len(nt);
+    debug_assert!(nc >= 3);
     coarse.reset(nc, nz);
     for ic in 0..nc {
+        let (kids, nk) = children(ic, nt);
+        // Coarse offset of parent ig from ic: 0, +1 or −1 (mod n_c).
+        let offset = |ig: usize| -> isize {
+            let off = (ig + nc - ic) % nc;
+            debug_assert!(off == 0 || off == 1 || off == nc - 1);
+            match off {
+                0 => 0,
+                1 => 1,
+                _ => -1,
+            }
+        };
         for j in 0..nz {
             let kc = ic * nz + j;
             if cmask[kc] == 0.0 {
                 coarse.c[C][kc] = 1.0;
                 continue;
             }
-            for (df, wr) in [(-1isize, 0.5), (0, 1.0), (1, 0.5)] {
-                let f = wrap(2 * ic, df, nt);
+            for &(f, wr) in &kids[..nk] {
                 let kf = f * nz + j;
                 let r = wr * fmask[kf];
                 if r == 0.0 {
@@ -238,33 +287,21 @@ pub(crate) fn galerkin(fine: &Stencil9, fmask: &[f64], cmask: &[f64], coarse: &m
                 }
                 for di in -1isize..=1 {
                     let g = wrap(f, di, nt);
+                    let (par, np) = parents(g, nt);
                     for dj in -1isize..=1 {
                         let jj = j as isize + dj;
                         if jj < 0 || jj >= nz as isize {
                             continue;
                         }
+                        let jj = jj as usize;
                         let a = fine.c[at(di, dj)][kf];
-                        let kg = g * nz + jj as usize;
-                        if a == 0.0 || fmask[kg] == 0.0 {
+                        if a == 0.0 || fmask[g * nz + jj] == 0.0 {
                             continue;
                         }
-                        let ra = r * a;
-                        let mut add = |ig: usize, w: f64| {
-                            // Coarse offset of parent ig from ic: 0, +1 or −1 (mod nc).
-                            let off = (ig + nc - ic) % nc;
-                            let dc = match off {
-                                0 => 0,
-                                1 => 1,
-                                _ => -1,
-                            };
-                            debug_assert!(off == 0 || off == 1 || off == nc - 1);
-                            coarse.c[at(dc, dj)][kc] += ra * w;
-                        };
-                        if g % 2 == 0 {
-                            add(g / 2, 1.0);
-                        } else {
-                            add((g - 1) / 2, 0.5);
-                            add((g + 1) / 2 % nc, 0.5);
+                        for &(ig, w) in &par[..np] {
+                            if cmask[ig * nz + jj] != 0.0 {
+                                coarse.c[at(offset(ig), dj)][kc] += r * a * w;
+                            }
                         }
                     }
                 }
@@ -273,28 +310,40 @@ pub(crate) fn galerkin(fine: &Stencil9, fmask: &[f64], cmask: &[f64], coarse: &m
     }
 }
 
-/// r_c = R r_f (module docs).
-pub(crate) fn restrict(nt: usize, nz: usize, fmask: &[f64], rf: &[f64], rc: &mut [f64]) {
-    let nc = nt / 2;
-    for ic in 0..nc {
-        let (fw, fp, fe) = (wrap(2 * ic, -1, nt), 2 * ic, 2 * ic + 1);
+/// r_c = R r_f = Pᵀ r_f (module docs).
+pub(crate) fn restrict(
+    nt: usize,
+    nz: usize,
+    fmask: &[f64],
+    cmask: &[f64],
+    rf: &[f64],
+    rc: &mut [f64],
+) {
+    for ic in 0..coarse_len(nt) {
+        let (kids, nk) = children(ic, nt);
         for j in 0..nz {
-            let (kw, kp, ke) = (fw * nz + j, fp * nz + j, fe * nz + j);
-            rc[ic * nz + j] =
-                0.5 * fmask[kw] * rf[kw] + fmask[kp] * rf[kp] + 0.5 * fmask[ke] * rf[ke];
+            let kc = ic * nz + j;
+            let mut v = 0.0;
+            for &(f, w) in &kids[..nk] {
+                let k = f * nz + j;
+                v += w * fmask[k] * rf[k];
+            }
+            rc[kc] = cmask[kc] * v;
         }
     }
 }
 
 /// x_f += P x_c (module docs).
 pub(crate) fn prolong_add(nt: usize, nz: usize, fmask: &[f64], xc: &[f64], xf: &mut [f64]) {
-    let nc = nt / 2;
-    for ic in 0..nc {
-        let icn = if ic + 1 == nc { 0 } else { ic + 1 };
+    for f in 0..nt {
+        let (par, np) = parents(f, nt);
         for j in 0..nz {
-            let (kp, ko) = ((2 * ic) * nz + j, (2 * ic + 1) * nz + j);
-            xf[kp] += fmask[kp] * xc[ic * nz + j];
-            xf[ko] += fmask[ko] * (0.5 * (xc[ic * nz + j] + xc[icn * nz + j]));
+            let k = f * nz + j;
+            let mut v = 0.0;
+            for &(ic, w) in &par[..np] {
+                v += w * xc[ic * nz + j];
+            }
+            xf[k] += fmask[k] * v;
         }
     }
 }
@@ -411,6 +460,7 @@ impl MgLevel {
 pub(crate) struct Multigrid {
     levels: Vec<MgLevel>,
     coarsest: Option<faer::sparse::linalg::solvers::Lu<usize, f64>>,
+    cfg: (usize, usize, usize, bool),
 }
 
 impl std::fmt::Debug for Multigrid {
@@ -473,19 +523,57 @@ impl Multigrid {
 
     /// Builds the hierarchy for the frozen system `st`: masks, Galerkin operators, line factors
     /// and the coarsest LU.
-    pub(crate) fn setup(&mut self, grid: &Grid, st: &Stencil) -> Result<(), ReynoldsError> {
+    pub(crate) fn setup(
+        &mut self,
+        grid: &Grid,
+        st: &Stencil,
+        switch: Option<&[f64]>,
+    ) -> Result<(), ReynoldsError> {
+        let env = |k: &str, d: usize| {
+            std::env::var(k)
+                .ok()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(d)
+        };
+        self.cfg = (
+            env("MG_NU1", 1),
+            env("MG_NU2", 1),
+            env("MG_GAMMA", 1),
+            env("MG_CIRC", 1) == 1,
+        );
         let mut depth = 1;
         let mut nt = grid.n_theta;
-        while nt % 2 == 0 && nt > COARSEST_THETA {
-            nt /= 2;
+        while nt > COARSEST_THETA {
+            nt = coarse_len(nt);
             depth += 1;
         }
         self.levels.resize_with(depth, MgLevel::default);
         self.levels[0].a.from_five(grid, st);
         let mask = &mut self.levels[0].mask;
         mask.clear();
-        mask.extend(grid.kind.iter().map(|&k| {
-            if k == NodeKind::Unknown { 1.0 } else { 0.0 }
+        let cavmask = env("MG_CAVMASK", 0);
+        let (nt0, nz0) = (grid.n_theta, grid.n_z);
+        mask.extend(grid.kind.iter().enumerate().map(|(k, &kind)| {
+            let full = match (cavmask, switch) {
+                (0, _) | (_, None) => true,
+                (1, Some(g)) => g[k] > 0.5,
+                (_, Some(g)) => {
+                    let (i, j) = (k / nz0, k % nz0);
+                    let nb = [
+                        k,
+                        (i + nt0 - 1) % nt0 * nz0 + j,
+                        (i + 1) % nt0 * nz0 + j,
+                        k.saturating_sub(1),
+                        (k + 1).min(g.len() - 1),
+                    ];
+                    nb.iter().any(|&l| g[l] > 0.5 && grid.kind[l] == NodeKind::Unknown)
+                }
+            };
+            if kind == NodeKind::Unknown && full {
+                1.0
+            } else {
+                0.0
+            }
         }));
         for l in 1..depth {
             let (fine, coarse) = self.levels.split_at_mut(l);
@@ -507,52 +595,95 @@ impl Multigrid {
         Ok(())
     }
 
-    /// z = M⁻¹ r: one V(1, 1)-cycle from z = 0 (module docs).
+    /// z = M⁻¹ r: one cycle from z = 0 (module docs).
     pub(crate) fn apply(&mut self, r: &[f64], z: &mut [f64]) -> Result<(), ReynoldsError> {
-        let depth = self.levels.len();
         self.levels[0].b.copy_from_slice(r);
-        for l in 0..depth - 1 {
-            let lv = &mut self.levels[l];
-            lv.x.iter_mut().for_each(|v| *v = 0.0);
+        self.cycle(0)?;
+        z.copy_from_slice(&self.levels[0].x);
+        Ok(())
+    }
+
+    fn smooth(&mut self, l: usize, pre: bool) -> Result<(), ReynoldsError> {
+        let circ = self.cfg.3;
+        let both = std::env::var("MG_BOTH").is_ok();
+        let lv = &mut self.levels[l];
+        if both {
             lv.circumferential_sweep(l)?;
+            if pre {
+                lv.axial_sweep(l, 0)?;
+                lv.axial_sweep(l, 1)?;
+            } else {
+                lv.axial_sweep(l, 1)?;
+                lv.axial_sweep(l, 0)?;
+            }
+            lv.circumferential_sweep(l)?;
+        } else if pre {
+            if circ {
+                lv.circumferential_sweep(l)?;
+            }
             lv.axial_sweep(l, 0)?;
             lv.axial_sweep(l, 1)?;
-            lv.a.defect(&lv.x, &lv.b, &mut lv.t);
-            let (fine, coarse) = self.levels.split_at_mut(l + 1);
-            let f = &fine[l];
-            restrict(f.a.nt, f.a.nz, &f.mask, &f.t, &mut coarse[0].b);
-        }
-        {
-            let last = &mut self.levels[depth - 1];
-            let lu = self.coarsest.as_ref().ok_or(ReynoldsError::LinearSolve {
-                solver: "multigrid coarsest level",
-                detail: "no factorization (setup failed or not run)".into(),
-            })?;
-            let n = last.b.len();
-            let rhs = Col::<f64>::from_fn(n, |k| last.b[k]);
-            let sol = lu.solve(&rhs);
-            for k in 0..n {
-                let v = sol[k];
-                if !v.is_finite() {
-                    return Err(ReynoldsError::NonFinite {
-                        what: "multigrid coarsest-level solution",
-                        theta_index: k / last.a.nz,
-                        z_index: k % last.a.nz,
-                        iteration: 0,
-                    });
-                }
-                last.x[k] = v;
+        } else {
+            lv.axial_sweep(l, 1)?;
+            lv.axial_sweep(l, 0)?;
+            if circ {
+                lv.circumferential_sweep(l)?;
             }
         }
-        for l in (0..depth - 1).rev() {
+        Ok(())
+    }
+
+    /// x_l ≈ A_l⁻¹ b_l from x_l = 0.
+    fn cycle(&mut self, l: usize) -> Result<(), ReynoldsError> {
+        let depth = self.levels.len();
+        if l + 1 == depth {
+            return self.solve_coarsest();
+        }
+        let (nu1, nu2, gamma, _) = self.cfg;
+        self.levels[l].x.iter_mut().for_each(|v| *v = 0.0);
+        for _ in 0..nu1 {
+            self.smooth(l, true)?;
+        }
+        let g = if l + 2 == depth { 1 } else { gamma };
+        for _ in 0..g {
+            {
+                let (fine, coarse) = self.levels.split_at_mut(l + 1);
+                let f = &mut fine[l];
+                f.a.defect(&f.x, &f.b, &mut f.t);
+                restrict(f.a.nt, f.a.nz, &f.mask, &coarse[0].mask, &f.t, &mut coarse[0].b);
+            }
+            self.cycle(l + 1)?;
             let (fine, coarse) = self.levels.split_at_mut(l + 1);
             let f = &mut fine[l];
             prolong_add(f.a.nt, f.a.nz, &f.mask, &coarse[0].x, &mut f.x);
-            f.axial_sweep(l, 1)?;
-            f.axial_sweep(l, 0)?;
-            f.circumferential_sweep(l)?;
         }
-        z.copy_from_slice(&self.levels[0].x);
+        for _ in 0..nu2 {
+            self.smooth(l, false)?;
+        }
+        Ok(())
+    }
+
+    fn solve_coarsest(&mut self) -> Result<(), ReynoldsError> {
+        let last = self.levels.last_mut().expect("at least one level");
+        let lu = self.coarsest.as_ref().ok_or(ReynoldsError::LinearSolve {
+            solver: "multigrid coarsest level",
+            detail: "no factorization (setup failed or not run)".into(),
+        })?;
+        let n = last.b.len();
+        let rhs = Col::<f64>::from_fn(n, |k| last.b[k]);
+        let sol = lu.solve(&rhs);
+        for k in 0..n {
+            let v = sol[k];
+            if !v.is_finite() {
+                return Err(ReynoldsError::NonFinite {
+                    what: "multigrid coarsest-level solution",
+                    theta_index: k / last.a.nz,
+                    z_index: k % last.a.nz,
+                    iteration: 0,
+                });
+            }
+            last.x[k] = v;
+        }
         Ok(())
     }
 }
