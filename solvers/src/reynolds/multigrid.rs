@@ -112,12 +112,15 @@ pub(crate) struct Stencil9 {
     pub nt: usize,
     pub nz: usize,
     pub c: [Vec<f64>; 9],
+    /// The corners are zero (the fine level): the defect skips them.
+    five: bool,
 }
 
 impl Stencil9 {
     fn reset(&mut self, nt: usize, nz: usize) {
         self.nt = nt;
         self.nz = nz;
+        self.five = false;
         for v in &mut self.c {
             v.clear();
             v.resize(nt * nz, 0.0);
@@ -132,6 +135,7 @@ impl Stencil9 {
         self.c[E].copy_from_slice(&st.e);
         self.c[S].copy_from_slice(&st.s);
         self.c[N].copy_from_slice(&st.n);
+        self.five = true;
     }
 
     /// y = b − A x on axial line i (the n_z rows i · n_z + j).
@@ -165,6 +169,17 @@ impl Stencil9 {
         let (c0, c1, c2, c3, c4, c5, c6, c7, c8) =
             (c(0), c(1), c(2), c(3), c(4), c(5), c(6), c(7), c(8));
         let (xw, xp, xe) = (xl[0], xl[1], xl[2]);
+        if self.five {
+            for j in 1..last {
+                let s = c4[j] * xp[j]
+                    + c1[j] * xw[j]
+                    + c7[j] * xe[j]
+                    + c3[j] * xp[j - 1]
+                    + c5[j] * xp[j + 1];
+                yl[j] = bl[j] - s;
+            }
+            return;
+        }
         for j in 1..last {
             let s = c4[j] * xp[j]
                 + c1[j] * xw[j]
@@ -273,38 +288,45 @@ pub(crate) fn galerkin(fine: &Stencil9, fmask: &[f64], cmask: &[f64], coarse: &m
                 _ => -1,
             }
         };
+        // The θ-structure (children, neighbours, parents, coarse offsets) is the same on every
+        // row j: work it out once per coarse column, then run down the column.
+        for &(f, wr) in &kids[..nk] {
+            for di in -1isize..=1 {
+                let g = wrap(f, di, nt);
+                let (par, np) = parents(g, nt);
+                for &(ig, w) in &par[..np] {
+                    let dc = offset(ig);
+                    let weight = wr * w;
+                    for dj in -1isize..=1 {
+                        let src = &fine.c[at(di, dj)];
+                        let dst = &mut coarse.c[at(dc, dj)];
+                        // Rows j0..j1 of the column; their neighbours jj = j + dj.
+                        let (j0, j1) = (usize::from(dj < 0), nz - usize::from(dj > 0));
+                        let len = j1 - j0;
+                        let jn = (j0 as isize + dj) as usize;
+                        let row = f * nz + j0..f * nz + j0 + len;
+                        let d = &mut dst[ic * nz + j0..ic * nz + j0 + len];
+                        let cr = &cmask[ic * nz + j0..ic * nz + j0 + len];
+                        let fg = &fmask[g * nz + jn..g * nz + jn + len];
+                        let cc = &cmask[ig * nz + jn..ig * nz + jn + len];
+                        // Row active (R) × column active (P) × coarse column active.
+                        for ((((d, a), fr), (fg, cc)), cr) in d
+                            .iter_mut()
+                            .zip(&src[row.clone()])
+                            .zip(&fmask[row])
+                            .zip(fg.iter().zip(cc))
+                            .zip(cr)
+                        {
+                            *d += weight * (fr * fg * cc * cr) * a;
+                        }
+                    }
+                }
+            }
+        }
         for j in 0..nz {
             let kc = ic * nz + j;
             if cmask[kc] == 0.0 {
                 coarse.c[C][kc] = 1.0;
-                continue;
-            }
-            for &(f, wr) in &kids[..nk] {
-                let kf = f * nz + j;
-                let r = wr * fmask[kf];
-                if r == 0.0 {
-                    continue;
-                }
-                for di in -1isize..=1 {
-                    let g = wrap(f, di, nt);
-                    let (par, np) = parents(g, nt);
-                    for dj in -1isize..=1 {
-                        let jj = j as isize + dj;
-                        if jj < 0 || jj >= nz as isize {
-                            continue;
-                        }
-                        let jj = jj as usize;
-                        let a = fine.c[at(di, dj)][kf];
-                        if a == 0.0 || fmask[g * nz + jj] == 0.0 {
-                            continue;
-                        }
-                        for &(ig, w) in &par[..np] {
-                            if cmask[ig * nz + jj] != 0.0 {
-                                coarse.c[at(offset(ig), dj)][kc] += r * a * w;
-                            }
-                        }
-                    }
-                }
             }
         }
     }
