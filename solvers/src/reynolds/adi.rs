@@ -358,9 +358,6 @@ pub(crate) fn solve_krylov(
         }
         let target = tolerance * scale;
         if rmax <= target || scale == 0.0 {
-            if std::env::var("MG_TRACE").is_ok() {
-                eprintln!("TRACE it {iterations} tol {tolerance:e}");
-            }
             ws.r = r;
             return Ok(KrylovInfo { iterations });
         }
@@ -371,9 +368,6 @@ pub(crate) fn solve_krylov(
                 residual: rmax / scale,
                 tolerance,
             });
-        }
-        if std::env::var("MG_TRACE").is_ok() {
-            eprintln!("TRACE start/restart it {iterations} r/target {:e}", rmax / target);
         }
         // One GMRES cycle.
         let beta = dot(&r, &r).sqrt();

@@ -438,10 +438,16 @@ impl MgLevel {
     }
 
     /// x += A_θ⁻¹ (b − A x): every circumferential line at once (z-neighbours lagged).
-    fn circumferential_sweep(&mut self, level: usize) -> Result<(), ReynoldsError> {
-        self.a.defect(&self.x, &self.b, &mut self.t);
+    /// `x_is_zero`: x = 0 on entry, so the defect is b itself.
+    fn circumferential_sweep(&mut self, level: usize, x_is_zero: bool) -> Result<(), ReynoldsError> {
+        let rhs = if x_is_zero {
+            &self.b
+        } else {
+            self.a.defect(&self.x, &self.b, &mut self.t);
+            &self.t
+        };
         self.circumferential
-            .solve(&self.t, &mut self.y)
+            .solve(rhs, &mut self.y)
             .map_err(|e| line_error(level, "circumferential", e))?;
         for (x, y) in self.x.iter_mut().zip(&self.y) {
             *x += y;
@@ -482,7 +488,6 @@ impl MgLevel {
 pub(crate) struct Multigrid {
     levels: Vec<MgLevel>,
     coarsest: Option<faer::sparse::linalg::solvers::Lu<usize, f64>>,
-    cfg: (usize, usize, usize, bool),
 }
 
 impl std::fmt::Debug for Multigrid {
@@ -551,18 +556,6 @@ impl Multigrid {
         st: &Stencil,
         switch: Option<&[f64]>,
     ) -> Result<(), ReynoldsError> {
-        let env = |k: &str, d: usize| {
-            std::env::var(k)
-                .ok()
-                .and_then(|v| v.parse().ok())
-                .unwrap_or(d)
-        };
-        self.cfg = (
-            env("MG_NU1", 1),
-            env("MG_NU2", 1),
-            env("MG_GAMMA", 1),
-            env("MG_CIRC", 1) == 1,
-        );
         let mut depth = 1;
         let mut nt = grid.n_theta;
         while nt > COARSEST_THETA {
@@ -573,24 +566,9 @@ impl Multigrid {
         self.levels[0].a.from_five(grid, st);
         let mask = &mut self.levels[0].mask;
         mask.clear();
-        let cavmask = env("MG_CAVMASK", 0);
-        let (nt0, nz0) = (grid.n_theta, grid.n_z);
+        // The coarse space holds the full-film nodes only (module docs, "Cavitated rows").
         mask.extend(grid.kind.iter().enumerate().map(|(k, &kind)| {
-            let full = match (cavmask, switch) {
-                (0, _) | (_, None) => true,
-                (1, Some(g)) => g[k] > 0.5,
-                (_, Some(g)) => {
-                    let (i, j) = (k / nz0, k % nz0);
-                    let nb = [
-                        k,
-                        (i + nt0 - 1) % nt0 * nz0 + j,
-                        (i + 1) % nt0 * nz0 + j,
-                        k.saturating_sub(1),
-                        (k + 1).min(g.len() - 1),
-                    ];
-                    nb.iter().any(|&l| g[l] > 0.5 && grid.kind[l] == NodeKind::Unknown)
-                }
-            };
+            let full = switch.is_none_or(|g| g[k] > 0.5);
             if kind == NodeKind::Unknown && full {
                 1.0
             } else {
@@ -625,63 +603,35 @@ impl Multigrid {
         Ok(())
     }
 
-    fn smooth(&mut self, l: usize, pre: bool) -> Result<(), ReynoldsError> {
-        let circ = self.cfg.3;
-        let both = std::env::var("MG_BOTH").is_ok();
-        let lv = &mut self.levels[l];
-        if both {
-            lv.circumferential_sweep(l)?;
-            if pre {
-                lv.axial_sweep(l, 0)?;
-                lv.axial_sweep(l, 1)?;
-            } else {
-                lv.axial_sweep(l, 1)?;
-                lv.axial_sweep(l, 0)?;
-            }
-            lv.circumferential_sweep(l)?;
-        } else if pre {
-            if circ {
-                lv.circumferential_sweep(l)?;
-            }
-            lv.axial_sweep(l, 0)?;
-            lv.axial_sweep(l, 1)?;
-        } else {
-            lv.axial_sweep(l, 1)?;
-            lv.axial_sweep(l, 0)?;
-            if circ {
-                lv.circumferential_sweep(l)?;
-            }
-        }
-        Ok(())
-    }
-
-    /// x_l ≈ A_l⁻¹ b_l from x_l = 0.
+    /// x_l ≈ A_l⁻¹ b_l from x_l = 0: one V(1, 1)-cycle below level l.
     fn cycle(&mut self, l: usize) -> Result<(), ReynoldsError> {
         let depth = self.levels.len();
         if l + 1 == depth {
             return self.solve_coarsest();
         }
-        let (nu1, nu2, gamma, _) = self.cfg;
-        self.levels[l].x.iter_mut().for_each(|v| *v = 0.0);
-        for _ in 0..nu1 {
-            self.smooth(l, true)?;
+        {
+            // Pre-smoothing: circumferential lines (from x = 0 the defect is b), then the
+            // axial lines, even i before odd i.
+            let lv = &mut self.levels[l];
+            lv.x.iter_mut().for_each(|v| *v = 0.0);
+            lv.circumferential_sweep(l, true)?;
+            lv.axial_sweep(l, 0)?;
+            lv.axial_sweep(l, 1)?;
         }
-        let g = if l + 2 == depth { 1 } else { gamma };
-        for _ in 0..g {
-            {
-                let (fine, coarse) = self.levels.split_at_mut(l + 1);
-                let f = &mut fine[l];
-                f.a.defect(&f.x, &f.b, &mut f.t);
-                restrict(f.a.nt, f.a.nz, &f.mask, &coarse[0].mask, &f.t, &mut coarse[0].b);
-            }
-            self.cycle(l + 1)?;
+        {
             let (fine, coarse) = self.levels.split_at_mut(l + 1);
             let f = &mut fine[l];
-            prolong_add(f.a.nt, f.a.nz, &f.mask, &coarse[0].x, &mut f.x);
+            f.a.defect(&f.x, &f.b, &mut f.t);
+            restrict(f.a.nt, f.a.nz, &f.mask, &coarse[0].mask, &f.t, &mut coarse[0].b);
         }
-        for _ in 0..nu2 {
-            self.smooth(l, false)?;
-        }
+        self.cycle(l + 1)?;
+        let (fine, coarse) = self.levels.split_at_mut(l + 1);
+        let f = &mut fine[l];
+        prolong_add(f.a.nt, f.a.nz, &f.mask, &coarse[0].x, &mut f.x);
+        // Post-smoothing in the reverse order.
+        f.axial_sweep(l, 1)?;
+        f.axial_sweep(l, 0)?;
+        f.circumferential_sweep(l, false)?;
         Ok(())
     }
 
