@@ -200,13 +200,6 @@ impl Stencil9 {
         }
     }
 
-    /// y = A x.
-    #[cfg(test)]
-    pub(crate) fn apply(&self, x: &[f64], y: &mut [f64]) {
-        let zero = vec![0.0; x.len()];
-        self.defect(x, &zero, y);
-        y.iter_mut().for_each(|v| *v = -*v);
-    }
 }
 
 /// Index of fine node `i + d` on a periodic ring of `n` (|d| ≤ 1).
@@ -541,12 +534,6 @@ fn factor_coarsest(
 }
 
 impl Multigrid {
-    /// Number of levels of the last setup (1: the fine grid could not be coarsened and is
-    /// solved by LU).
-    #[cfg(test)]
-    pub(crate) fn depth(&self) -> usize {
-        self.levels.len()
-    }
 
     /// Builds the hierarchy for the frozen system `st`: masks, Galerkin operators, line factors
     /// and the coarsest LU.
