@@ -21,8 +21,12 @@
 //! - `discretization`: the conservative five-point scheme, its face
 //!   fluxes (Couette type differencing, pressure flux through gψ) and the frozen-switch
 //!   linear system.
-//! - `adi`: ADI line sweeps (cyclic kernel on circumferential lines, Thomas on
-//!   axial lines) + line-aggregate coarse correction, as the preconditioner of FGMRES.
+//! - `adi`: the flexible GMRES of a frozen-switch system, and ADI line sweeps (cyclic kernel
+//!   on circumferential lines, Thomas on axial lines) + line-aggregate coarse correction as
+//!   one of its preconditioners.
+//! - `multigrid`: the default preconditioner, a θ-semi-coarsening multigrid V-cycle with
+//!   zebra axial-line and cyclic circumferential-line smoothing and Galerkin coarse levels
+//!   (Krylov iterations per solve nearly independent of the grid).
 //! - `oracle`: the sparse-LU (faer) solve of the same system, g frozen.
 //! - `outputs`: force, attitude, h_min, p_max, cavitated fraction, side
 //!   leakage, supply flow, friction torques, power loss.
@@ -154,14 +158,15 @@ pub enum SupplyModel {
 /// Linear solver of the frozen-switch systems.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum LinearSolver {
-    /// ADI line sweeps + coarse correction preconditioning FGMRES (default).
-    #[default]
+    /// ADI line sweeps + line-aggregate coarse correction preconditioning FGMRES.
     AdiKrylov,
     /// Sparse LU (faer), the test oracle.
     SparseLu,
     /// θ-semi-coarsening multigrid V-cycle (zebra axial lines + circumferential cyclic lines,
-    /// Galerkin coarse levels) preconditioning FGMRES: Krylov iterations per solve nearly
-    /// independent of the grid (`multigrid` module docs).
+    /// Galerkin coarse levels) preconditioning FGMRES (default): Krylov iterations per solve
+    /// nearly independent of the grid (`multigrid` module docs); 15 % less time per film step
+    /// than [`AdiKrylov`](Self::AdiKrylov) on the default grid, 2.3× less on 240 × 61.
+    #[default]
     MultigridKrylov,
 }
 
@@ -227,7 +232,7 @@ pub struct ReynoldsParams {
 
 impl ReynoldsParams {
     /// A plain bearing with the defaults: β = 1.5 GPa, p_amb = p_cav = 0, no grooves, default
-    /// grid, BDF2 (backward-Euler start), ADI-Krylov, tolerance 1e-10.
+    /// grid, BDF2 (backward-Euler start), multigrid-Krylov, tolerance 1e-10.
     pub fn plain(radius: f64, length: f64, clearance: f64, viscosity: f64) -> Self {
         Self {
             radius,
@@ -241,7 +246,7 @@ impl ReynoldsParams {
             supply: SupplyModel::Grooves,
             grid: GridParams::default(),
             time_scheme: TimeScheme::default(),
-            linear_solver: LinearSolver::AdiKrylov,
+            linear_solver: LinearSolver::default(),
             tolerance: 1e-10,
             max_newton_iterations: 100,
             max_linear_iterations: 400,
@@ -437,7 +442,7 @@ pub(crate) struct Core {
     residual: f64,
 }
 
-/// The solver: parameters plus reusable workspaces (grid, stencil, ADI scratch).
+/// The solver: parameters plus reusable workspaces (grid, stencil, Krylov/multigrid scratch).
 #[derive(Debug, Clone)]
 pub struct ReynoldsSolver {
     params: ReynoldsParams,
