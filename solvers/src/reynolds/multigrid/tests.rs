@@ -204,7 +204,10 @@ fn prolongation_is_exact_for_constant_and_linear_fields() {
             for j in 0..nz {
                 let want = 0.3 + 1.7 * f as f64 - 0.2 * j as f64;
                 let got = xf[f * nz + j];
-                assert!((got - want).abs() < 1e-13, "n_θ {nt} ({f}, {j}): {got} vs {want}");
+                assert!(
+                    (got - want).abs() < 1e-13,
+                    "n_θ {nt} ({f}, {j}): {got} vs {want}"
+                );
             }
         }
     }
@@ -424,7 +427,10 @@ fn multigrid_krylov_matches_the_lu_oracle() {
         let (x, _) = solve_mg(&s.grid, &st, &g, 1e-10);
         let mut r = vec![0.0; s.grid.len()];
         let (rmax, scale) = st.residual(&s.grid, &x, &mut r);
-        assert!(rmax <= 1e-10 * scale, "case {case}: residual {rmax:e} scale {scale:e}");
+        assert!(
+            rmax <= 1e-10 * scale,
+            "case {case}: residual {rmax:e} scale {scale:e}"
+        );
         let mut y = vec![0.0; s.grid.len()];
         oracle::solve_lu(&s.grid, &st, &mut y).unwrap();
         let ymax = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -438,7 +444,10 @@ fn multigrid_krylov_matches_the_lu_oracle() {
              max|x − x_LU| = {err:e}, max|x_LU| = {ymax:e}"
         );
     }
-    assert!(cavitated_seen > 500, "the cases must cavitate: {cavitated_seen}");
+    assert!(
+        cavitated_seen > 500,
+        "the cases must cavitate: {cavitated_seen}"
+    );
 }
 
 /// The same answer as the oracle through the whole semismooth Newton solve (steady and a time
@@ -491,7 +500,11 @@ fn iterations_on_grids(dt: Option<f64>, switch: &dyn Fn(&Grid, usize) -> f64) ->
 /// minimum film (θ = 270°) round to just before the groove (θ = 90°).
 fn diverging_half(grid: &Grid, k: usize) -> f64 {
     let th = grid.theta(k / grid.n_z).to_degrees();
-    if (85.0..=270.0).contains(&th) { 1.0 } else { 0.0 }
+    if (85.0..=270.0).contains(&th) {
+        1.0
+    } else {
+        0.0
+    }
 }
 
 /// Krylov iterations per solve grow by at most 1.3× from 60 × 15 to 240 × 61 (16× the nodes;
