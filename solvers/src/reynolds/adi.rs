@@ -1,5 +1,6 @@
-//! The iterative solve of one frozen-switch system: ADI line sweeps as the preconditioner of a
-//! restarted flexible GMRES, with a coarse line-aggregate correction.
+//! The iterative solve of one frozen-switch system: a restarted flexible GMRES, preconditioned
+//! by ADI line sweeps with a coarse line-aggregate correction (this module) or by the multigrid
+//! V-cycle of [`super::multigrid`] (the default; chosen by [`Preconditioner`]).
 //!
 //! # Why not plain ADI sweeps
 //!
@@ -323,7 +324,11 @@ fn subtract_and_dot(w: &mut [f64], h: f64, v: &[f64], u: Option<&[f64]>) -> f64 
 /// Solves A x = rhs for the frozen switch, starting from the `x` given (warm start), to
 /// max |r| ≤ `tolerance` × flux scale: `flux_scale` if given (the semismooth Newton passes the
 /// scale of its nonlinear residual, which a pseudo-time shift must not inflate), else the
-/// stencil's own ([`Stencil::residual`]).
+/// stencil's own ([`Stencil::residual`]). `preconditioner` chooses the ADI sweeps or the
+/// multigrid V-cycle; `switch` (g of the frozen system) lets the multigrid keep the cavitated
+/// nodes out of its coarse space (`multigrid` module docs; the ADI ignores it).
+// Crate-internal; the two call sites in `mod.rs` pass every argument explicitly.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_krylov(
     grid: &Grid,
     st: &Stencil,

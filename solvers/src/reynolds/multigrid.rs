@@ -162,7 +162,7 @@ impl Stencil9 {
     }
 
     /// The five-point fine stencil as a nine-point one (zero corners).
-    fn from_five(&mut self, grid: &Grid, st: &Stencil) {
+    fn assign_five(&mut self, grid: &Grid, st: &Stencil) {
         self.reset(grid.n_theta, grid.n_z);
         self.c[C].copy_from_slice(&st.p);
         self.c[W].copy_from_slice(&st.w);
@@ -255,10 +255,10 @@ pub(crate) fn coarse_len(nt: usize) -> usize {
 #[inline(always)]
 fn parents(f: usize, nt: usize) -> ([(usize, f64); 2], usize) {
     let nc = coarse_len(nt);
-    if f % 2 == 0 {
+    if f.is_multiple_of(2) {
         ([(f / 2, 1.0), (0, 0.0)], 1)
     } else {
-        ([((f - 1) / 2, 0.5), ((f + 1) / 2 % nc, 0.5)], 2)
+        ([((f - 1) / 2, 0.5), (f.div_ceil(2) % nc, 0.5)], 2)
     }
 }
 
@@ -270,7 +270,7 @@ fn children(ic: usize, nt: usize) -> ([(usize, f64); 3], usize) {
     if ic >= 1 {
         out[count] = (2 * ic - 1, 0.5);
         count += 1;
-    } else if nt % 2 == 0 {
+    } else if nt.is_multiple_of(2) {
         out[count] = (nt - 1, 0.5);
         count += 1;
     }
@@ -586,7 +586,7 @@ impl Multigrid {
             depth += 1;
         }
         self.levels.resize_with(depth, MgLevel::default);
-        self.levels[0].a.from_five(grid, st);
+        self.levels[0].a.assign_five(grid, st);
         let mask = &mut self.levels[0].mask;
         mask.clear();
         // The coarse space holds the full-film nodes only (module docs, "Cavitated rows").
