@@ -512,8 +512,9 @@ impl MgLevel {
     }
 }
 
-/// The multigrid hierarchy of one frozen system (rebuilt by [`Multigrid::setup`]; reused
-/// storage, no allocation when warm except inside the coarsest sparse LU).
+/// The multigrid hierarchy of one frozen system (rebuilt by [`Multigrid::setup`]). The level
+/// vectors are reused; a setup allocates the line-factor staging and the coarsest sparse LU,
+/// and each coarsest solve its right-hand side column (n_θ ≤ 8 lines: small).
 #[derive(Default)]
 pub(crate) struct Multigrid {
     levels: Vec<MgLevel>,
