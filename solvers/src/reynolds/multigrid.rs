@@ -101,8 +101,8 @@
 //! Stationary V-cycle contraction ≈ 0.1 per cycle on the full film, independent of the grid.
 //! FGMRES iterations for a 1e-10 solve from the Dirichlet start, ε = 0.8 compressor bearing,
 //! 60×15 / 120×31 / 240×61: steady full film 7 / 7 / 7; 1° step, full 7 / 7 / 7; 1° step with
-//! the diverging half cavitated 6 / 7 / 7; steady film at its converged cavity 7 / 9 / 12 (the
-//! known limit: the slow mode sits on the full nodes of the reformation front next to the
+//! the diverging half cavitated 6 / 7 / 7; a 1° step at its converged cavity 7 / 8 / 9; the
+//! steady film at its converged cavity 7 / 9 / 12 (×1.7, the known limit: the slow mode sits on the full nodes of the reformation front next to the
 //! groove, where a cavitated row outside the coarse space fixes the pressure of its full
 //! neighbour). Inside the inverse solver (inverse_timing, Krylov iterations per film step,
 //! several solves of mixed tolerance each): 5.6 / 7.1 / 9.5 against the ADI

@@ -532,16 +532,18 @@ fn krylov_iterations_do_not_grow_with_the_grid() {
     }
 }
 
-/// Known limit (issue 11 item 5, not met here): with the *steady* cavity at its converged
-/// switch the count still grows, measured 7 / 9 / 12 from 60 × 15 to 240 × 61 (1.7×, against
-/// ~4× for the ADI preconditioner). The slow mode sits on the full-film nodes of the
-/// reformation front next to the groove, where a cavitated row (outside the coarse space)
-/// fixes the pressure of its full neighbour. The test keeps the measured bound (≤ 2×) so that
-/// a regression shows.
+/// Known limit (issue 11 item 5, not met here): at the *converged* cavity of the real film the
+/// count still grows — steady film 7 / 9 / 12 from 60 × 15 to 240 × 61 (×1.7), a 1° time
+/// step 7 / 8 / 9 (×1.29) — against ~4× for the ADI preconditioner. The slow mode sits on the
+/// full-film nodes of the reformation front next to the groove, where a cavitated row (outside
+/// the coarse space) fixes the pressure of its full neighbour. The test keeps the measured
+/// bounds with a margin (steady ≤ 2×, step ≤ 1.5×) so that a regression shows.
 #[test]
-fn steady_cavity_iteration_growth_is_bounded() {
-    let mut it = [0usize; 3];
-    for (slot, (nt, nz)) in [(60, 15), (120, 31), (240, 61)].into_iter().enumerate() {
+fn real_cavity_iteration_growth_is_bounded() {
+    let grids = [(60, 15), (120, 31), (240, 61)];
+    let mut steady_it = [0usize; 3];
+    let mut step_it = [0usize; 3];
+    for (slot, (nt, nz)) in grids.into_iter().enumerate() {
         let mut s = ReynoldsSolver::new(compressor(LinearSolver::SparseLu, nt, nz)).unwrap();
         let sol = s.solve_steady([0.0, -0.8], &running()).unwrap();
         let sw: Vec<f64> = sol.switch.iter().copied().collect();
@@ -552,10 +554,32 @@ fn steady_cavity_iteration_growth_is_bounded() {
             &|_, k| sw[k],
         );
         assert!(g.contains(&0.0), "the steady film must cavitate");
-        it[slot] = solve_mg(&s.grid, &st, &g, 1e-10).1;
+        steady_it[slot] = solve_mg(&s.grid, &st, &g, 1e-10).1;
+
+        let mut s = ReynoldsSolver::new(compressor(LinearSolver::SparseLu, nt, nz)).unwrap();
+        let state = s.initial_state([0.1, -0.6]);
+        let input = StepInput {
+            eccentricity_ratio: [0.12, -0.63],
+            dt: STEP,
+            conditions: running(),
+        };
+        let (step, _) = s.solve_step(&state, &input).unwrap();
+        let sw: Vec<f64> = step.switch.iter().copied().collect();
+        let (s, st, g) = frozen_system(
+            compressor(LinearSolver::MultigridKrylov, nt, nz),
+            [0.12, -0.63],
+            Some(STEP),
+            &|_, k| sw[k],
+        );
+        assert!(g.contains(&0.0), "the step must cavitate");
+        step_it[slot] = solve_mg(&s.grid, &st, &g, 1e-10).1;
     }
     assert!(
-        it[2] as f64 <= 2.0 * it[0] as f64,
-        "steady cavity: iterations {it:?} grow more than 2×"
+        steady_it[2] as f64 <= 2.0 * steady_it[0] as f64,
+        "steady cavity: iterations {steady_it:?} grow more than 2×"
+    );
+    assert!(
+        step_it[2] as f64 <= 1.5 * step_it[0] as f64,
+        "1° step cavity: iterations {step_it:?} grow more than 1.5×"
     );
 }
