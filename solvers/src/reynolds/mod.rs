@@ -164,8 +164,8 @@ pub enum LinearSolver {
     SparseLu,
     /// θ-semi-coarsening multigrid V-cycle (zebra axial lines + circumferential cyclic lines,
     /// Galerkin coarse levels) preconditioning FGMRES (default): Krylov iterations per solve
-    /// nearly independent of the grid (`multigrid` module docs); 15 % less time per film step
-    /// than [`AdiKrylov`](Self::AdiKrylov) on the default grid, 2.3× less on 240 × 61.
+    /// nearly independent of the grid (`multigrid` module docs); 17 % less time per film step
+    /// than [`AdiKrylov`](Self::AdiKrylov) on the default grid, 2.2× less on 240 × 61.
     #[default]
     MultigridKrylov,
 }
