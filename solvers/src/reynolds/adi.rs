@@ -1,5 +1,6 @@
-//! The iterative solve of one frozen-switch system: ADI line sweeps as the preconditioner of a
-//! restarted flexible GMRES, with a coarse line-aggregate correction.
+//! The iterative solve of one frozen-switch system: a restarted flexible GMRES, preconditioned
+//! by ADI line sweeps with a coarse line-aggregate correction (this module) or by the multigrid
+//! V-cycle of [`super::multigrid`] (the default; chosen by [`Preconditioner`]).
 //!
 //! # Why not plain ADI sweeps
 //!
@@ -46,7 +47,18 @@
 use super::ReynoldsError;
 use super::discretization::Stencil;
 use super::grid::{Grid, NodeKind};
+use super::multigrid::Multigrid;
 use crate::tridiagonal::{InterleavedFactors, LineWorkspace, cyclic_thomas_solve};
+
+/// The preconditioner of the flexible GMRES.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Preconditioner {
+    /// ADI line sweeps with the line-aggregate coarse correction (this module).
+    Adi,
+    /// A V-cycle of θ-semi-coarsening multigrid with zebra axial-line smoothing
+    /// ([`super::multigrid`]).
+    Multigrid,
+}
 
 /// Krylov subspace size before a restart.
 const RESTART: usize = 48;
@@ -72,6 +84,7 @@ pub(crate) struct AdiWorkspace {
     circumferential_factors: InterleavedFactors,
     axial_factors: InterleavedFactors,
     line: LineWorkspace,
+    multigrid: Multigrid,
 }
 
 /// Result of one frozen-switch iterative solve.
@@ -311,7 +324,11 @@ fn subtract_and_dot(w: &mut [f64], h: f64, v: &[f64], u: Option<&[f64]>) -> f64 
 /// Solves A x = rhs for the frozen switch, starting from the `x` given (warm start), to
 /// max |r| ≤ `tolerance` × flux scale: `flux_scale` if given (the semismooth Newton passes the
 /// scale of its nonlinear residual, which a pseudo-time shift must not inflate), else the
-/// stencil's own ([`Stencil::residual`]).
+/// stencil's own ([`Stencil::residual`]). `preconditioner` chooses the ADI sweeps or the
+/// multigrid V-cycle; `switch` (g of the frozen system) lets the multigrid keep the cavitated
+/// nodes out of its coarse space (`multigrid` module docs; the ADI ignores it).
+// Crate-internal; the two call sites in `mod.rs` pass every argument explicitly.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_krylov(
     grid: &Grid,
     st: &Stencil,
@@ -319,12 +336,19 @@ pub(crate) fn solve_krylov(
     tolerance: f64,
     flux_scale: Option<f64>,
     max_iterations: usize,
+    preconditioner: Preconditioner,
+    switch: Option<&[f64]>,
     ws: &mut AdiWorkspace,
 ) -> Result<KrylovInfo, ReynoldsError> {
     let n = grid.len();
     ws.ensure(n, grid.n_theta);
-    build_coarse(grid, st, ws);
-    factor_lines(grid, st, ws)?;
+    match preconditioner {
+        Preconditioner::Adi => {
+            build_coarse(grid, st, ws);
+            factor_lines(grid, st, ws)?;
+        }
+        Preconditioner::Multigrid => ws.multigrid.setup(grid, st, switch)?,
+    }
     let mut iterations = 0;
     loop {
         let mut r = std::mem::take(&mut ws.r);
@@ -362,7 +386,10 @@ pub(crate) fn solve_krylov(
         for jj in 0..RESTART {
             let mut zj = std::mem::take(&mut ws.z[jj]);
             let vj = std::mem::take(&mut ws.v[jj]);
-            precondition(grid, st, &vj, &mut zj, ws)?;
+            match preconditioner {
+                Preconditioner::Adi => precondition(grid, st, &vj, &mut zj, ws)?,
+                Preconditioner::Multigrid => ws.multigrid.apply(&vj, &mut zj)?,
+            }
             ws.v[jj] = vj;
             let mut w = std::mem::take(&mut ws.v[jj + 1]);
             st.apply(grid, &zj, &mut w);

@@ -21,8 +21,12 @@
 //! - `discretization`: the conservative five-point scheme, its face
 //!   fluxes (Couette type differencing, pressure flux through gψ) and the frozen-switch
 //!   linear system.
-//! - `adi`: ADI line sweeps (cyclic kernel on circumferential lines, Thomas on
-//!   axial lines) + line-aggregate coarse correction, as the preconditioner of FGMRES.
+//! - `adi`: the flexible GMRES of a frozen-switch system, and ADI line sweeps (cyclic kernel
+//!   on circumferential lines, Thomas on axial lines) + line-aggregate coarse correction as
+//!   one of its preconditioners.
+//! - `multigrid`: the default preconditioner, a θ-semi-coarsening multigrid V-cycle with
+//!   zebra axial-line and cyclic circumferential-line smoothing and Galerkin coarse levels
+//!   (Krylov iterations per solve nearly independent of the grid).
 //! - `oracle`: the sparse-LU (faer) solve of the same system, g frozen.
 //! - `outputs`: force, attitude, h_min, p_max, cavitated fraction, side
 //!   leakage, supply flow, friction torques, power loss.
@@ -108,6 +112,7 @@ mod adi;
 mod discretization;
 mod film;
 mod grid;
+mod multigrid;
 mod oracle;
 mod outputs;
 mod steady_load;
@@ -154,11 +159,27 @@ pub enum SupplyModel {
 /// Linear solver of the frozen-switch systems.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum LinearSolver {
-    /// ADI line sweeps + coarse correction preconditioning FGMRES (default).
-    #[default]
+    /// ADI line sweeps + line-aggregate coarse correction preconditioning FGMRES.
     AdiKrylov,
     /// Sparse LU (faer), the test oracle.
     SparseLu,
+    /// θ-semi-coarsening multigrid V-cycle (zebra axial lines + circumferential cyclic lines,
+    /// Galerkin coarse levels) preconditioning FGMRES (default): Krylov iterations per solve
+    /// nearly independent of the grid (`multigrid` module docs); 17 % less time per film step
+    /// than [`AdiKrylov`](Self::AdiKrylov) on the default grid, 2.2× less on 240 × 61.
+    #[default]
+    MultigridKrylov,
+}
+
+impl LinearSolver {
+    /// The FGMRES preconditioner of an iterative choice (None for the direct oracle).
+    fn preconditioner(self) -> Option<adi::Preconditioner> {
+        match self {
+            LinearSolver::AdiKrylov => Some(adi::Preconditioner::Adi),
+            LinearSolver::MultigridKrylov => Some(adi::Preconditioner::Multigrid),
+            LinearSolver::SparseLu => None,
+        }
+    }
 }
 
 /// Grid size: n_theta nodes around (periodic), n_z nodes along including both ends.
@@ -225,7 +246,7 @@ pub const VISCOSITY_PICARD_MAX: usize = 200;
 
 impl ReynoldsParams {
     /// A plain bearing with the defaults: β = 1.5 GPa, p_amb = p_cav = 0, no grooves, default
-    /// grid, BDF2 (backward-Euler start), ADI-Krylov, tolerance 1e-10.
+    /// grid, BDF2 (backward-Euler start), multigrid-Krylov, tolerance 1e-10.
     pub fn plain(radius: f64, length: f64, clearance: f64, viscosity: f64) -> Self {
         Self {
             radius,
@@ -239,7 +260,7 @@ impl ReynoldsParams {
             supply: SupplyModel::Grooves,
             grid: GridParams::default(),
             time_scheme: TimeScheme::default(),
-            linear_solver: LinearSolver::AdiKrylov,
+            linear_solver: LinearSolver::default(),
             tolerance: 1e-10,
             max_newton_iterations: 100,
             max_linear_iterations: 400,
@@ -448,7 +469,7 @@ pub(crate) struct Core {
     residual: f64,
 }
 
-/// The solver: parameters plus reusable workspaces (grid, stencil, ADI scratch).
+/// The solver: parameters plus reusable workspaces (grid, stencil, Krylov/multigrid scratch).
 #[derive(Debug, Clone)]
 pub struct ReynoldsSolver {
     params: ReynoldsParams,
@@ -815,8 +836,8 @@ impl ReynoldsSolver {
             }
             let mut x = std::mem::take(&mut self.sensitivity[c]);
             x.resize(n, 0.0);
-            match p.linear_solver {
-                LinearSolver::AdiKrylov => {
+            match p.linear_solver.preconditioner() {
+                Some(pc) => {
                     adi::solve_krylov(
                         grid,
                         &self.stencil,
@@ -824,10 +845,12 @@ impl ReynoldsSolver {
                         JACOBIAN_TOLERANCE.max(p.tolerance),
                         None,
                         p.max_linear_iterations,
+                        pc,
+                        Some(&lin.g),
                         &mut self.ws,
                     )?;
                 }
-                LinearSolver::SparseLu => oracle::solve_lu(grid, &self.stencil, &mut x)?,
+                None => oracle::solve_lu(grid, &self.stencil, &mut x)?,
             }
             for i in 0..grid.n_theta {
                 let th = grid.theta(i);
@@ -1129,8 +1152,8 @@ impl ReynoldsSolver {
             }
             let linear_tolerance = if tight { p.tolerance } else { loose };
             let mut y = psi.clone();
-            match p.linear_solver {
-                LinearSolver::AdiKrylov => {
+            match p.linear_solver.preconditioner() {
+                Some(pc) => {
                     let info = adi::solve_krylov(
                         grid,
                         &self.stencil,
@@ -1138,11 +1161,13 @@ impl ReynoldsSolver {
                         linear_tolerance,
                         Some(scale),
                         p.max_linear_iterations,
+                        pc,
+                        Some(&g),
                         &mut self.ws,
                     )?;
                     newton.linear_iterations += info.iterations;
                 }
-                LinearSolver::SparseLu => oracle::solve_lu(grid, &self.stencil, &mut y)?,
+                None => oracle::solve_lu(grid, &self.stencil, &mut y)?,
             }
             if let Some(k) = y.iter().position(|x| !x.is_finite()) {
                 return Err(ReynoldsError::NonFinite {

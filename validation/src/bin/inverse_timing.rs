@@ -19,9 +19,12 @@
 //! - step scaling at 120 × 31: 2°, 1°, 0.5°.
 //!
 //! Usage: `cargo run --release -p jbearing-validation --bin inverse_timing [-- [--quick |
-//! --default] [--repeat N] [--jacobian exact|broyden|differences]]`
+//! --default | --grids] [--repeat N] [--jacobian exact|broyden|differences]
+//! [--linear adi|multigrid|lu]]`
 //! (`--quick`: the 60 × 15 rows only, to check that it runs; `--default`: the 120 × 31, 1° row
-//! only, for before/after comparisons of a change; `--repeat N`: run every row N times and
+//! only, for before/after comparisons of a change; `--grids`: the three grid-scaling rows at 1°;
+//! `--linear`: the frozen-switch linear solver, default the film's default (ADI-Krylov);
+//! `--repeat N`: run every row N times and
 //! report the run with the median time, for a machine shared with other jobs; `--jacobian`:
 //! the inverse Newton's Jacobian, default exact). "ms per film step" includes the exact
 //! Jacobian's two linear solves; "Krylov iterations per film step" counts the film solves only.
@@ -32,7 +35,7 @@ use jbearing_solvers::inverse::{
     JacobianMethod, NoObserver, ReynoldsFilm, solve_inverse,
 };
 use jbearing_solvers::load::{FnLoad, OperatingHistory};
-use jbearing_solvers::reynolds::{FilmState, TimeScheme};
+use jbearing_solvers::reynolds::{FilmState, LinearSolver, TimeScheme};
 use jbearing_validation::compressor_main::{FEED, OMEGA, pulse_load, reynolds_params};
 use std::f64::consts::TAU;
 
@@ -104,7 +107,13 @@ struct Row {
     solution: InverseSolution,
 }
 
-fn run(n_theta: usize, n_z: usize, step_deg: f64, jacobian: JacobianMethod) -> Result<Row> {
+fn run(
+    n_theta: usize,
+    n_z: usize,
+    step_deg: f64,
+    jacobian: JacobianMethod,
+    linear: LinearSolver,
+) -> Result<Row> {
     let load = OperatingHistory {
         load: FnLoad {
             period: TAU / OMEGA,
@@ -114,8 +123,10 @@ fn run(n_theta: usize, n_z: usize, step_deg: f64, jacobian: JacobianMethod) -> R
         bearing_speed: 0.0,
         feed_pressures: vec![FEED],
     };
+    let mut reynolds = reynolds_params(TimeScheme::default(), n_theta, n_z);
+    reynolds.linear_solver = linear;
     let mut film = TimedFilm {
-        inner: ReynoldsFilm::new(reynolds_params(TimeScheme::default(), n_theta, n_z))?,
+        inner: ReynoldsFilm::new(reynolds)?,
         film_seconds: 0.0,
         krylov_iterations: 0,
     };
@@ -155,18 +166,28 @@ fn main() -> Result<()> {
     let mut rest = args.iter();
     while let Some(a) = rest.next() {
         match a.as_str() {
-            "--quick" | "--default" => {}
-            "--repeat" | "--jacobian" => {
+            "--quick" | "--default" | "--grids" => {}
+            "--repeat" | "--jacobian" | "--linear" => {
                 rest.next();
             }
             other => anyhow::bail!(
-                "unknown argument {other:?} (expected --quick, --default, --repeat N, \
-                 --jacobian exact|broyden|differences)"
+                "unknown argument {other:?} (expected --quick, --default, --grids, --repeat N, \
+                 --jacobian exact|broyden|differences, --linear adi|multigrid|lu)"
             ),
         }
     }
     let quick = args.iter().any(|a| a == "--quick");
     let default_only = args.iter().any(|a| a == "--default");
+    let grids_only = args.iter().any(|a| a == "--grids");
+    let linear = match args.iter().position(|a| a == "--linear") {
+        Some(i) => match args.get(i + 1).map(String::as_str) {
+            Some("adi") => LinearSolver::AdiKrylov,
+            Some("multigrid") => LinearSolver::MultigridKrylov,
+            Some("lu") => LinearSolver::SparseLu,
+            other => anyhow::bail!("--linear {other:?}: expected adi, multigrid or lu"),
+        },
+        None => LinearSolver::default(),
+    };
     let repeat: usize = match args.iter().position(|a| a == "--repeat") {
         Some(i) => args
             .get(i + 1)
@@ -188,6 +209,8 @@ fn main() -> Result<()> {
         vec![(60, 15, 2.0), (60, 15, 1.0)]
     } else if default_only {
         vec![(120, 31, 1.0)]
+    } else if grids_only {
+        vec![(60, 15, 1.0), (120, 31, 1.0), (240, 61, 1.0)]
     } else {
         vec![
             (120, 31, 1.0),
@@ -198,10 +221,12 @@ fn main() -> Result<()> {
         ]
     };
     println!(
-        "Machine: {}. Measured: {}. Thread CPU time, one core, release build; {:?} Jacobian{}.\n",
+        "Machine: {}. Measured: {}. Thread CPU time, one core, release build; {:?} Jacobian; \
+         {:?} linear solver{}.\n",
         machine(),
         jiff::Timestamp::now().strftime("%Y-%m-%d %H:%M UTC"),
         jacobian,
+        linear,
         if repeat > 1 {
             format!("; each row the median of {repeat} runs")
         } else {
@@ -214,7 +239,7 @@ fn main() -> Result<()> {
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (nt, nz, step) in plan {
         let mut runs = (0..repeat)
-            .map(|_| run(nt, nz, step, jacobian))
+            .map(|_| run(nt, nz, step, jacobian, linear))
             .collect::<Result<Vec<_>>>()?;
         runs.sort_by(|a, b| a.total.total_cmp(&b.total));
         let r = runs.swap_remove(repeat / 2);

@@ -1,0 +1,695 @@
+//! A geometric multigrid V-cycle (semi-coarsening in θ, zebra axial-line and cyclic
+//! circumferential-line smoothing, Galerkin coarse operators) as the preconditioner of the
+//! flexible GMRES of a frozen-switch Reynolds system.
+//!
+//! # What it solves
+//!
+//! One Newton step of the complementarity solve (`mod.rs`) freezes the switch g and solves the
+//! linear system A(g) y = b of the five-point conservative stencil ([`super::discretization`]):
+//!
+//! ```text
+//!   p_P y_P + w_P y_W + e_P y_E + s_P y_S + n_P y_N = b_P      (unknown nodes, periodic in θ)
+//!   y_P = ψ_D                                                   (ends, grooves, supply line)
+//! ```
+//!
+//! with p > 0 and w, e, s, n ≤ 0 (a column-dominant M-matrix: the pressure flux β h³/12μ of the
+//! full-film nodes, the upwind Couette transport (U/2) h φ of every node, the time term
+//! V h/Δt). The full-film part is a stiff, variable-coefficient Poisson operator; in the cavity
+//! the rows are the θ-transport of the film content. The ADI preconditioner of [`super::adi`]
+//! removes the smooth error only through its one-dimensional line-aggregate coarse problem, so
+//! its Krylov count grows with the grid (17 / 38 / 80 on 60×15 / 120×31 / 240×61). This V-cycle
+//! treats every θ-wavelength on a level where it is short.
+//!
+//! # Grid hierarchy and transfers
+//!
+//! Semi-coarsening in θ only (Venner & Lubrecht 2000; Trottenberg, Oosterlee & Schüller 2001,
+//! ch. 5 on anisotropic operators): the coarse ring keeps the even fine columns,
+//! n_c = ⌈n_θ/2⌉, level after level until n_θ ≤ [`COARSEST_THETA`] (120 → 60 → 30 → 15 → 8 on
+//! the default grid). The z-lines stay whole on every level, so the axial line solve is exact
+//! across z however strongly the operator couples z (the semi-coarsened levels are increasingly
+//! z-dominated: the coupling ratio (Δx/Δz)² grows 4× per level).
+//!
+//! ```text
+//!   level l          i:  0   1   2   3   4   5   …  n_θ−1 | 0     (periodic)
+//!                        ●   ○   ●   ○   ●   ○       ○
+//!                        │ ╲ │ ╱ │ ╲ │ ╱ │            ╲ ╱
+//!   level l+1        I:  0       1       2   …  n_c−1 | 0         (n_c = ⌈n_θ/2⌉)
+//!
+//!   prolongation P (linear in θ, identity in z, per axial row j):
+//!     e_f(2I)   = m_f(2I)   · e_c(I)
+//!     e_f(2I+1) = m_f(2I+1) · ½ (e_c(I) + e_c(I+1 mod n_c))
+//!   restriction R = Pᵀ:  r_c(I) = m_c(I) [½ m r(2I−1) + m r(2I) + ½ m r(2I+1)]
+//!   coarse operator (Galerkin): A_c = R A P  — 3 × 3 (nine-point) stencil on every coarse level
+//! ```
+//!
+//! For odd n_θ the last fine column n_θ−1 is even, i.e. a coarse node, and the coarse interval
+//! from it to column 0 is one fine step long: a non-uniform coarse ring, which the Galerkin
+//! product handles without special cases (and no odd column has to wrap).
+//!
+//! **Masks.** m_f is 1 on the *full-film* unknowns and 0 on Dirichlet nodes (ends, grooves,
+//! supply line) and on cavitated nodes; m_c(I) = m_f(2I). So a correction never changes a
+//! Dirichlet value, no Dirichlet residual is restricted, every active column of P owns a node
+//! of weight 1 that no other column touches (the columns are independent: a coarse node fed by
+//! a single odd fine node shared with its neighbour would duplicate a row — a singular coarse
+//! line, seen on the real films before this rule), and inactive coarse nodes get identity rows.
+//!
+//! **Why the cavity stays on the fine level.** A cavitated row is the θ-transport of film
+//! content (its diagonal is the Couette outflow (U/2) h Δz) plus the β-sized pressure flux
+//! from its full neighbours. Galerkin-coarsened together with the pressure rows it degrades:
+//! upwind transport [−1 1] becomes [−¾ 1 ¼], and on the real cavitating films the coarse
+//! operators with cavitated rows were unstable (a stationary V-cycle diverging by 5e3 per cycle
+//! at 240 × 61 with the real steady switch, though FGMRES still converged); widening the coarse
+//! space to the cavitated nodes next to full ones was worse (×118 per cycle). With the cavity
+//! masked out, the coarse problems are the pressure block with the cavity as a zero-correction
+//! boundary, whose Galerkin operators behave (the θ-mass of the z-part, [¼ 3/2 ¼] ⊗ A_z, makes
+//! them not M-matrices, but their symmetric part stays positive definite), and the cavity is
+//! relaxed by the circumferential line sweep, which solves the θ-transport of each line
+//! exactly. Without a switch (`None`) every unknown is coarsened.
+//!
+//! A vanishing line pivot or a singular coarsest matrix is reported as
+//! [`ReynoldsError::LinearSolve`], a non-finite coarsest solution as
+//! [`ReynoldsError::NonFinite`], never as a NaN; the FGMRES residual check guards the answer.
+//!
+//! # One V(1,1)-cycle (the preconditioner application z = M⁻¹ r)
+//!
+//! ```text
+//!   level l < coarsest:  x_l = 0
+//!                        S_pre :  circumferential lines (cyclic, θ exact, z-neighbours lagged)
+//!                                 axial lines, even i then odd i (zebra; θ-neighbours lagged)
+//!                        b_{l+1} = R (b_l − A_l x_l)
+//!   coarsest level:      x_L = A_L⁻¹ b_L          (faer sparse LU; n_θ ≤ 8, whole z-lines)
+//!   back up:             x_l += P x_{l+1}
+//!                        S_post:  axial lines odd i then even i, circumferential lines
+//! ```
+//!
+//! The axial (z) line relaxation in zebra order is the smoother that semi-coarsening in θ
+//! needs (it damps every error mode that oscillates in θ, for any z-coupling strength); the
+//! circumferential cyclic line sweep adds what the zebra lines cannot do: it carries the
+//! θ-transport of the cavitated rows exactly (the modified Thomas kernel of
+//! [`crate::tridiagonal`], as in the ADI preconditioner; without it, in an early variant, a
+//! steady cavitated solve took 46 instead of 5 Krylov iterations per solve on 60 × 15). All
+//! line matrices are fixed
+//! during a Krylov solve: they are factored once per frozen system ([`InterleavedFactors`])
+//! and every sweep is a batched forward and back substitution. Measured alternatives: an
+//! extra circumferential sweep per smoothing step cut the iterations by 10 % but cost 7 % more
+//! time per film step (120 × 31); V(2,2) cut them by ~25 % (not timed); a W-cycle changed
+//! nothing (the remaining slow mode is not a coarse-solve accuracy problem); freezing the
+//! full nodes pinned by a cavitated neighbour in the line sweeps made it worse.
+//!
+//! # Convergence (measured; tests in `multigrid/tests.rs`)
+//!
+//! Stationary V-cycle contraction ≈ 0.1 per cycle on the full film, independent of the grid.
+//! FGMRES iterations for a 1e-10 solve from the Dirichlet start, ε = 0.8 compressor bearing,
+//! 60×15 / 120×31 / 240×61: steady full film 7 / 7 / 7; 1° step, full 7 / 7 / 7; 1° step with
+//! the diverging half cavitated 6 / 7 / 7; a 1° step at its converged cavity 7 / 8 / 9; the
+//! steady film at its converged cavity 7 / 9 / 12 (×1.7, the known limit: the slow mode sits on the full nodes of the reformation front next to the
+//! groove, where a cavitated row outside the coarse space fixes the pressure of its full
+//! neighbour). Inside the inverse solver (inverse_timing, Krylov iterations per film step,
+//! several solves of mixed tolerance each): 5.6 / 7.1 / 9.5 against the ADI
+//! preconditioner's 17.1 / 38.4 / 80.4.
+//!
+//! References: A. A. Lubrecht, W. E. ten Napel, R. Bosma, "Multigrid, an alternative method for
+//! calculating film thickness and pressure profiles in elastohydrodynamically lubricated line
+//! contacts", J. Tribol. 108 (1986) 551–556; C. H. Venner, A. A. Lubrecht, *Multilevel Methods
+//! in Lubrication*, Elsevier 2000; C. M. Woods, D. E. Brewe, "The solution of the Elrod
+//! algorithm for a dynamically loaded journal bearing using multigrid techniques", J. Tribol.
+//! 111 (1989) 302–308; U. Trottenberg, C. W. Oosterlee, A. Schüller, *Multigrid*, Academic
+//! Press 2001 (semi-coarsening with line relaxation, Galerkin coarsening); Y. Saad, "A flexible
+//! inner-outer preconditioned GMRES algorithm", SIAM J. Sci. Comput. 14 (1993) 461–469.
+
+use faer::prelude::*;
+use faer::sparse::{SparseColMat, Triplet};
+
+use super::ReynoldsError;
+use super::discretization::Stencil;
+use super::grid::{Grid, NodeKind};
+use crate::tridiagonal::InterleavedFactors;
+
+/// Coarsening stops at the first level with n_θ ≤ this; that level is solved by sparse LU
+/// (n_θ · n_z ≤ 8 · n_z unknowns: 8 × 31 on the default grid).
+pub(crate) const COARSEST_THETA: usize = 8;
+
+/// Index of the stencil entry of offset (dθ, dz) ∈ {−1, 0, 1}²: `3 (dθ + 1) + (dz + 1)`.
+const fn at(di: isize, dj: isize) -> usize {
+    (3 * (di + 1) + (dj + 1)) as usize
+}
+const C: usize = at(0, 0);
+const W: usize = at(-1, 0);
+const E: usize = at(1, 0);
+const S: usize = at(0, -1);
+const N: usize = at(0, 1);
+
+/// A nine-point periodic-in-θ stencil on an n_θ × n_z level, `c[o][i · n_z + j]`, o = [`at`].
+/// Entries that would reach past z = ends are zero.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Stencil9 {
+    pub nt: usize,
+    pub nz: usize,
+    pub c: [Vec<f64>; 9],
+    /// The corners are zero (the fine level): the defect skips them.
+    five: bool,
+}
+
+impl Stencil9 {
+    fn reset(&mut self, nt: usize, nz: usize) {
+        self.nt = nt;
+        self.nz = nz;
+        self.five = false;
+        for v in &mut self.c {
+            v.clear();
+            v.resize(nt * nz, 0.0);
+        }
+    }
+
+    /// The five-point fine stencil as a nine-point one (zero corners).
+    fn assign_five(&mut self, grid: &Grid, st: &Stencil) {
+        self.reset(grid.n_theta, grid.n_z);
+        self.c[C].copy_from_slice(&st.p);
+        self.c[W].copy_from_slice(&st.w);
+        self.c[E].copy_from_slice(&st.e);
+        self.c[S].copy_from_slice(&st.s);
+        self.c[N].copy_from_slice(&st.n);
+        self.five = true;
+    }
+
+    /// y = b − A x on axial line i (the n_z rows i · n_z + j).
+    fn defect_line(&self, i: usize, x: &[f64], b: &[f64], y: &mut [f64]) {
+        let (nt, nz) = (self.nt, self.nz);
+        let iw = if i == 0 { nt - 1 } else { i - 1 };
+        let ie = if i + 1 == nt { 0 } else { i + 1 };
+        let base = i * nz;
+        let xl = [
+            &x[iw * nz..(iw + 1) * nz],
+            &x[base..base + nz],
+            &x[ie * nz..(ie + 1) * nz],
+        ];
+        let c = |o: usize| &self.c[o][base..base + nz];
+        let last = nz - 1;
+        let (bl, yl) = (&b[base..base + nz], &mut y[base..base + nz]);
+        // End rows (no neighbour beyond the end).
+        for j in [0, last] {
+            let mut s = 0.0;
+            for d in 0..3 {
+                if j > 0 {
+                    s += c(3 * d)[j] * xl[d][j - 1];
+                }
+                s += c(3 * d + 1)[j] * xl[d][j];
+                if j < last {
+                    s += c(3 * d + 2)[j] * xl[d][j + 1];
+                }
+            }
+            yl[j] = bl[j] - s;
+        }
+        let (c0, c1, c2, c3, c4, c5, c6, c7, c8) =
+            (c(0), c(1), c(2), c(3), c(4), c(5), c(6), c(7), c(8));
+        let (xw, xp, xe) = (xl[0], xl[1], xl[2]);
+        if self.five {
+            for j in 1..last {
+                let s = c4[j] * xp[j]
+                    + c1[j] * xw[j]
+                    + c7[j] * xe[j]
+                    + c3[j] * xp[j - 1]
+                    + c5[j] * xp[j + 1];
+                yl[j] = bl[j] - s;
+            }
+            return;
+        }
+        for j in 1..last {
+            let s = c4[j] * xp[j]
+                + c1[j] * xw[j]
+                + c7[j] * xe[j]
+                + c3[j] * xp[j - 1]
+                + c5[j] * xp[j + 1]
+                + c0[j] * xw[j - 1]
+                + c2[j] * xw[j + 1]
+                + c6[j] * xe[j - 1]
+                + c8[j] * xe[j + 1];
+            yl[j] = bl[j] - s;
+        }
+    }
+
+    fn defect(&self, x: &[f64], b: &[f64], y: &mut [f64]) {
+        for i in 0..self.nt {
+            self.defect_line(i, x, b, y);
+        }
+    }
+}
+
+/// Index of fine node `i + d` on a periodic ring of `n` (|d| ≤ 1).
+#[inline(always)]
+fn wrap(i: usize, d: isize, n: usize) -> usize {
+    ((i + n) as isize + d) as usize % n
+}
+
+/// Number of coarse columns of a fine ring of `nt`: the even fine columns.
+#[inline(always)]
+pub(crate) fn coarse_len(nt: usize) -> usize {
+    nt.div_ceil(2)
+}
+
+/// The coarse parents of fine column f and their interpolation weights (the second is unused
+/// when the count is 1). Even f is coarse column f/2; odd f lies between (f−1)/2 and
+/// (f+1)/2 (mod n_c). For odd n_θ the last fine column n_θ−1 is even, and the coarse interval
+/// from it to column 0 is one fine step long (a non-uniform coarse ring; Galerkin does not
+/// mind).
+#[inline(always)]
+fn parents(f: usize, nt: usize) -> ([(usize, f64); 2], usize) {
+    let nc = coarse_len(nt);
+    if f.is_multiple_of(2) {
+        ([(f / 2, 1.0), (0, 0.0)], 1)
+    } else {
+        ([((f - 1) / 2, 0.5), (f.div_ceil(2) % nc, 0.5)], 2)
+    }
+}
+
+/// The fine children of coarse column I (the nonzeros of column I of P) and their weights.
+#[inline(always)]
+fn children(ic: usize, nt: usize) -> ([(usize, f64); 3], usize) {
+    let mut out = [(2 * ic, 1.0), (0, 0.0), (0, 0.0)];
+    let mut count = 1;
+    if ic >= 1 {
+        out[count] = (2 * ic - 1, 0.5);
+        count += 1;
+    } else if nt.is_multiple_of(2) {
+        out[count] = (nt - 1, 0.5);
+        count += 1;
+    }
+    if 2 * ic + 1 < nt {
+        out[count] = (2 * ic + 1, 0.5);
+        count += 1;
+    }
+    (out, count)
+}
+
+/// The coarse activity mask: coarse column I is active where its own fine node 2I is (so
+/// every active column of P has a node of weight 1 that no other column touches, and the
+/// columns of P are independent).
+fn coarse_mask(nt: usize, nz: usize, fmask: &[f64], cmask: &mut Vec<f64>) {
+    let nc = coarse_len(nt);
+    cmask.clear();
+    cmask.resize(nc * nz, 0.0);
+    for ic in 0..nc {
+        for j in 0..nz {
+            cmask[ic * nz + j] = fmask[2 * ic * nz + j];
+        }
+    }
+}
+
+/// Galerkin coarse operator A_c = R A P of the module docs (`fmask`, `cmask`: activity of the
+/// fine and coarse nodes). Needs n_c = ⌈n_θ/2⌉ ≥ 3.
+pub(crate) fn galerkin(fine: &Stencil9, fmask: &[f64], cmask: &[f64], coarse: &mut Stencil9) {
+    let (nt, nz) = (fine.nt, fine.nz);
+    let nc = coarse_len(nt);
+    debug_assert!(nc >= 3);
+    coarse.reset(nc, nz);
+    for ic in 0..nc {
+        let (kids, nk) = children(ic, nt);
+        // Coarse offset of parent ig from ic: 0, +1 or −1 (mod n_c).
+        let offset = |ig: usize| -> isize {
+            let off = (ig + nc - ic) % nc;
+            debug_assert!(off == 0 || off == 1 || off == nc - 1);
+            match off {
+                0 => 0,
+                1 => 1,
+                _ => -1,
+            }
+        };
+        // The θ-structure (children, neighbours, parents, coarse offsets) is the same on every
+        // row j: work it out once per coarse column, then run down the column.
+        for &(f, wr) in &kids[..nk] {
+            for di in -1isize..=1 {
+                let g = wrap(f, di, nt);
+                let (par, np) = parents(g, nt);
+                for &(ig, w) in &par[..np] {
+                    let dc = offset(ig);
+                    let weight = wr * w;
+                    for dj in -1isize..=1 {
+                        let src = &fine.c[at(di, dj)];
+                        let dst = &mut coarse.c[at(dc, dj)];
+                        // Rows j0..j1 of the column; their neighbours jj = j + dj.
+                        let (j0, j1) = (usize::from(dj < 0), nz - usize::from(dj > 0));
+                        let len = j1 - j0;
+                        let jn = (j0 as isize + dj) as usize;
+                        let row = f * nz + j0..f * nz + j0 + len;
+                        let d = &mut dst[ic * nz + j0..ic * nz + j0 + len];
+                        let cr = &cmask[ic * nz + j0..ic * nz + j0 + len];
+                        let fg = &fmask[g * nz + jn..g * nz + jn + len];
+                        let cc = &cmask[ig * nz + jn..ig * nz + jn + len];
+                        // Row active (R) × column active (P) × coarse column active.
+                        for ((((d, a), fr), (fg, cc)), cr) in d
+                            .iter_mut()
+                            .zip(&src[row.clone()])
+                            .zip(&fmask[row])
+                            .zip(fg.iter().zip(cc))
+                            .zip(cr)
+                        {
+                            *d += weight * (fr * fg * cc * cr) * a;
+                        }
+                    }
+                }
+            }
+        }
+        for j in 0..nz {
+            let kc = ic * nz + j;
+            if cmask[kc] == 0.0 {
+                coarse.c[C][kc] = 1.0;
+            }
+        }
+    }
+}
+
+/// r_c = R r_f = Pᵀ r_f (module docs).
+pub(crate) fn restrict(
+    nt: usize,
+    nz: usize,
+    fmask: &[f64],
+    cmask: &[f64],
+    rf: &[f64],
+    rc: &mut [f64],
+) {
+    for ic in 0..coarse_len(nt) {
+        let (kids, nk) = children(ic, nt);
+        for j in 0..nz {
+            let kc = ic * nz + j;
+            let mut v = 0.0;
+            for &(f, w) in &kids[..nk] {
+                let k = f * nz + j;
+                v += w * fmask[k] * rf[k];
+            }
+            rc[kc] = cmask[kc] * v;
+        }
+    }
+}
+
+/// x_f += P x_c (module docs).
+pub(crate) fn prolong_add(nt: usize, nz: usize, fmask: &[f64], xc: &[f64], xf: &mut [f64]) {
+    for f in 0..nt {
+        let (par, np) = parents(f, nt);
+        for j in 0..nz {
+            let k = f * nz + j;
+            let mut v = 0.0;
+            for &(ic, w) in &par[..np] {
+                v += w * xc[ic * nz + j];
+            }
+            xf[k] += fmask[k] * v;
+        }
+    }
+}
+
+/// One level of the hierarchy: its operator, activity mask, factored line matrices and
+/// scratch vectors.
+#[derive(Debug, Clone, Default)]
+struct MgLevel {
+    a: Stencil9,
+    mask: Vec<f64>,
+    circumferential: InterleavedFactors,
+    /// Axial lines of even and of odd i (zebra), line l = i div 2 at `j · lines + l`.
+    axial: [InterleavedFactors; 2],
+    x: Vec<f64>,
+    b: Vec<f64>,
+    t: Vec<f64>,
+    y: Vec<f64>,
+    line_rhs: Vec<f64>,
+    line_sol: Vec<f64>,
+}
+
+fn line_error(level: usize, what: &str, e: crate::tridiagonal::TridiagonalError) -> ReynoldsError {
+    ReynoldsError::LinearSolve {
+        solver: "multigrid smoother",
+        detail: format!("level {level}, {what} line: {e}"),
+    }
+}
+
+impl MgLevel {
+    fn lines_of(&self, parity: usize) -> usize {
+        (self.a.nt - parity).div_ceil(2)
+    }
+
+    /// Factors the circumferential lines and both zebra halves of the axial lines.
+    fn factor(&mut self, level: usize) -> Result<(), ReynoldsError> {
+        let (nt, nz) = (self.a.nt, self.a.nz);
+        let n = nt * nz;
+        for v in [&mut self.x, &mut self.b, &mut self.t, &mut self.y] {
+            v.clear();
+            v.resize(n, 0.0);
+        }
+        self.circumferential
+            .factor_periodic(nt, nz, &self.a.c[W], &self.a.c[C], &self.a.c[E])
+            .map_err(|e| line_error(level, "circumferential", e))?;
+        let half = nt.div_ceil(2) * nz;
+        let mut sub = vec![0.0; half];
+        let mut diag = vec![0.0; half];
+        let mut sup = vec![0.0; half];
+        for parity in 0..2 {
+            let lines = self.lines_of(parity);
+            for l in 0..lines {
+                let i = 2 * l + parity;
+                for j in 0..nz {
+                    let (k, t) = (i * nz + j, j * lines + l);
+                    sub[t] = self.a.c[S][k];
+                    diag[t] = self.a.c[C][k];
+                    sup[t] = self.a.c[N][k];
+                }
+            }
+            let m = lines * nz;
+            self.axial[parity]
+                .factor_dirichlet(nz, lines, &sub[..m], &diag[..m], &sup[..m])
+                .map_err(|e| line_error(level, "axial", e))?;
+        }
+        self.line_rhs.clear();
+        self.line_rhs.resize(half, 0.0);
+        self.line_sol.clear();
+        self.line_sol.resize(half, 0.0);
+        Ok(())
+    }
+
+    /// x += A_θ⁻¹ (b − A x): every circumferential line at once (z-neighbours lagged).
+    /// `x_is_zero`: x = 0 on entry, so the defect is b itself.
+    fn circumferential_sweep(
+        &mut self,
+        level: usize,
+        x_is_zero: bool,
+    ) -> Result<(), ReynoldsError> {
+        let rhs = if x_is_zero {
+            &self.b
+        } else {
+            self.a.defect(&self.x, &self.b, &mut self.t);
+            &self.t
+        };
+        self.circumferential
+            .solve(rhs, &mut self.y)
+            .map_err(|e| line_error(level, "circumferential", e))?;
+        for (x, y) in self.x.iter_mut().zip(&self.y) {
+            *x += y;
+        }
+        Ok(())
+    }
+
+    /// x += A_z⁻¹ (b − A x) on the axial lines of one parity (θ-neighbours lagged; the lines of
+    /// the other parity are the only neighbours, so the two halves are Gauss–Seidel ordered).
+    fn axial_sweep(&mut self, level: usize, parity: usize) -> Result<(), ReynoldsError> {
+        let (nt, nz) = (self.a.nt, self.a.nz);
+        let lines = self.lines_of(parity);
+        for l in 0..lines {
+            let i = 2 * l + parity;
+            self.a.defect_line(i, &self.x, &self.b, &mut self.t);
+            for j in 0..nz {
+                self.line_rhs[j * lines + l] = self.t[i * nz + j];
+            }
+        }
+        let m = lines * nz;
+        self.axial[parity]
+            .solve(&self.line_rhs[..m], &mut self.line_sol[..m])
+            .map_err(|e| line_error(level, "axial", e))?;
+        for l in 0..lines {
+            let i = 2 * l + parity;
+            for j in 0..nz {
+                self.x[i * nz + j] += self.line_sol[j * lines + l];
+            }
+        }
+        debug_assert!(nt >= 2);
+        Ok(())
+    }
+}
+
+/// The multigrid hierarchy of one frozen system (rebuilt by [`Multigrid::setup`]). The level
+/// vectors are reused; a setup allocates the line-factor staging and the coarsest sparse LU,
+/// and each coarsest solve its right-hand side column (n_θ ≤ 8 lines: small).
+#[derive(Default)]
+pub(crate) struct Multigrid {
+    levels: Vec<MgLevel>,
+    coarsest: Option<faer::sparse::linalg::solvers::Lu<usize, f64>>,
+}
+
+impl std::fmt::Debug for Multigrid {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Multigrid")
+            .field("levels", &self.levels.len())
+            .finish()
+    }
+}
+
+impl Clone for Multigrid {
+    /// A clone is an empty hierarchy: it holds nothing but the factors of the last frozen
+    /// system, which the next [`Multigrid::setup`] replaces anyway.
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+/// Sparse LU of a nine-point level (the coarsest).
+fn factor_coarsest(
+    a: &Stencil9,
+) -> Result<faer::sparse::linalg::solvers::Lu<usize, f64>, ReynoldsError> {
+    let (nt, nz) = (a.nt, a.nz);
+    let n = nt * nz;
+    let mut trip = Vec::with_capacity(9 * n);
+    for i in 0..nt {
+        for j in 0..nz {
+            let k = i * nz + j;
+            for di in -1isize..=1 {
+                let g = wrap(i, di, nt);
+                for dj in -1isize..=1 {
+                    let jj = j as isize + dj;
+                    let v = a.c[at(di, dj)][k];
+                    if v != 0.0 && jj >= 0 && jj < nz as isize {
+                        trip.push(Triplet::new(k, g * nz + jj as usize, v));
+                    }
+                }
+            }
+        }
+    }
+    let mat = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trip).map_err(|e| {
+        ReynoldsError::LinearSolve {
+            solver: "multigrid coarsest level",
+            detail: format!("matrix assembly failed ({nt} × {nz}): {e:?}"),
+        }
+    })?;
+    mat.sp_lu().map_err(|e| ReynoldsError::LinearSolve {
+        solver: "multigrid coarsest level",
+        detail: format!("sparse LU failed ({nt} × {nz}): {e:?}"),
+    })
+}
+
+impl Multigrid {
+    /// Builds the hierarchy for the frozen system `st`: masks, Galerkin operators, line factors
+    /// and the coarsest LU.
+    pub(crate) fn setup(
+        &mut self,
+        grid: &Grid,
+        st: &Stencil,
+        switch: Option<&[f64]>,
+    ) -> Result<(), ReynoldsError> {
+        let mut depth = 1;
+        let mut nt = grid.n_theta;
+        while nt > COARSEST_THETA {
+            nt = coarse_len(nt);
+            depth += 1;
+        }
+        self.levels.resize_with(depth, MgLevel::default);
+        self.levels[0].a.assign_five(grid, st);
+        let mask = &mut self.levels[0].mask;
+        mask.clear();
+        // The coarse space holds the full-film nodes only (module docs, "Cavitated rows").
+        mask.extend(grid.kind.iter().enumerate().map(|(k, &kind)| {
+            let full = switch.is_none_or(|g| g[k] > 0.5);
+            if kind == NodeKind::Unknown && full {
+                1.0
+            } else {
+                0.0
+            }
+        }));
+        for l in 1..depth {
+            let (fine, coarse) = self.levels.split_at_mut(l);
+            let (f, c) = (&fine[l - 1], &mut coarse[0]);
+            coarse_mask(f.a.nt, f.a.nz, &f.mask, &mut c.mask);
+            galerkin(&f.a, &f.mask, &c.mask, &mut c.a);
+        }
+        for l in 0..depth - 1 {
+            self.levels[l].factor(l)?;
+        }
+        let last = &mut self.levels[depth - 1];
+        let n = last.a.nt * last.a.nz;
+        for v in [&mut last.x, &mut last.b] {
+            v.clear();
+            v.resize(n, 0.0);
+        }
+        self.coarsest = None;
+        self.coarsest = Some(factor_coarsest(&last.a)?);
+        Ok(())
+    }
+
+    /// z = M⁻¹ r: one cycle from z = 0 (module docs).
+    pub(crate) fn apply(&mut self, r: &[f64], z: &mut [f64]) -> Result<(), ReynoldsError> {
+        self.levels[0].b.copy_from_slice(r);
+        self.cycle(0)?;
+        z.copy_from_slice(&self.levels[0].x);
+        Ok(())
+    }
+
+    /// x_l ≈ A_l⁻¹ b_l from x_l = 0: one V(1, 1)-cycle below level l.
+    fn cycle(&mut self, l: usize) -> Result<(), ReynoldsError> {
+        let depth = self.levels.len();
+        if l + 1 == depth {
+            return self.solve_coarsest();
+        }
+        {
+            // Pre-smoothing: circumferential lines (from x = 0 the defect is b), then the
+            // axial lines, even i before odd i.
+            let lv = &mut self.levels[l];
+            lv.x.iter_mut().for_each(|v| *v = 0.0);
+            lv.circumferential_sweep(l, true)?;
+            lv.axial_sweep(l, 0)?;
+            lv.axial_sweep(l, 1)?;
+        }
+        {
+            let (fine, coarse) = self.levels.split_at_mut(l + 1);
+            let f = &mut fine[l];
+            f.a.defect(&f.x, &f.b, &mut f.t);
+            restrict(
+                f.a.nt,
+                f.a.nz,
+                &f.mask,
+                &coarse[0].mask,
+                &f.t,
+                &mut coarse[0].b,
+            );
+        }
+        self.cycle(l + 1)?;
+        let (fine, coarse) = self.levels.split_at_mut(l + 1);
+        let f = &mut fine[l];
+        prolong_add(f.a.nt, f.a.nz, &f.mask, &coarse[0].x, &mut f.x);
+        // Post-smoothing in the reverse order.
+        f.axial_sweep(l, 1)?;
+        f.axial_sweep(l, 0)?;
+        f.circumferential_sweep(l, false)?;
+        Ok(())
+    }
+
+    fn solve_coarsest(&mut self) -> Result<(), ReynoldsError> {
+        let last = self.levels.last_mut().expect("at least one level");
+        let lu = self.coarsest.as_ref().ok_or(ReynoldsError::LinearSolve {
+            solver: "multigrid coarsest level",
+            detail: "no factorization (setup failed or not run)".into(),
+        })?;
+        let n = last.b.len();
+        let rhs = Col::<f64>::from_fn(n, |k| last.b[k]);
+        let sol = lu.solve(&rhs);
+        for k in 0..n {
+            let v = sol[k];
+            if !v.is_finite() {
+                return Err(ReynoldsError::NonFinite {
+                    what: "multigrid coarsest-level solution",
+                    theta_index: k / last.a.nz,
+                    z_index: k % last.a.nz,
+                    iteration: 0,
+                });
+            }
+            last.x[k] = v;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,585 @@
+//! Tests of the multigrid preconditioner: the transfer operators (R = Pᵀ, exact interpolation
+//! of constant and linear fields), the Galerkin operator of a known stencil, the preconditioned
+//! FGMRES against the sparse-LU oracle on frozen-switch systems of the real discretization, and
+//! the grid independence of the Krylov iteration count.
+
+use super::super::*;
+use super::*;
+
+/// xorshift64: reproducible pseudo-random numbers in [0, 1).
+fn rng(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The compressor main bearing of the validation timing case (design.md §7): L = 18.288 mm,
+/// R = 27.43 mm, c = 48.9 µm, μ = 0.02 Pa·s, a full-length feed groove 3.81 mm wide at θ = 90°
+/// (its 24.9 mm axial extent covers the whole length), fed at 0.2068 MPa, 1800 rpm.
+fn compressor(solver: LinearSolver, n_theta: usize, n_z: usize) -> ReynoldsParams {
+    let mut p = ReynoldsParams::plain(27.43e-3, 18.288e-3, 48.9e-6, 0.02);
+    p.grid = GridParams { n_theta, n_z };
+    p.linear_solver = solver;
+    p.grooves = vec![Groove {
+        center_angle: std::f64::consts::FRAC_PI_2,
+        center_z: 0.0,
+        angular_width: 3.81e-3 / 27.43e-3,
+        axial_width: 24.9e-3,
+        cutoff_film_fraction: 0.01,
+    }];
+    p
+}
+
+fn running() -> OperatingConditions {
+    OperatingConditions {
+        journal_speed: 1800.0 * std::f64::consts::TAU / 60.0,
+        bearing_speed: 0.0,
+        feed_pressures: vec![0.2068e6],
+    }
+}
+
+/// One crank degree at 1800 rpm, the inverse solver's default step.
+const STEP: f64 = 1.0 / 30.0 / 360.0;
+
+/// The frozen-switch system of the real discretization at ε: steady (`dt` None) or one
+/// backward-Euler step from the old content 0.9 h (a squeezing film), with the switch
+/// `switch(grid, k)` on the unknown nodes. Returns the solver (grid, Dirichlet values), the
+/// stencil and the full switch vector.
+fn frozen_system(
+    params: ReynoldsParams,
+    eps: [f64; 2],
+    dt: Option<f64>,
+    switch: &dyn Fn(&Grid, usize) -> f64,
+) -> (ReynoldsSolver, Stencil, Vec<f64>) {
+    let mut s = ReynoldsSolver::new(params).unwrap();
+    let prep = s.prepare(eps, &running(), None).unwrap();
+    let grid = &s.grid;
+    let level = discretization::Level {
+        grid,
+        h: &prep.h.node,
+        h_face: &prep.h.face_theta,
+        k_theta: &s.k_theta,
+        k_z: &s.k_z,
+        speed: prep.speed,
+    };
+    let mut g = prep.g.clone();
+    for k in 0..grid.len() {
+        if grid.kind[k] == NodeKind::Unknown {
+            g[k] = switch(grid, k);
+        }
+    }
+    let old: Vec<f64> = prep.h.node.iter().map(|h| 0.9 * h).collect();
+    let time = match dt {
+        None => TimeTerm::Steady,
+        Some(dt) => TimeTerm::Step {
+            dt,
+            old_content: &old,
+            old_outflow: None,
+        },
+    };
+    let mut st = Stencil::default();
+    discretization::assemble(&level, &g, &s.dirichlet, time, &mut st);
+    (s, st, g)
+}
+
+/// The start of a frozen solve as the Newton loop gives it: Dirichlet values in place, 0 on
+/// the unknowns.
+fn dirichlet_start(grid: &Grid, st: &Stencil) -> Vec<f64> {
+    (0..grid.len())
+        .map(|k| {
+            if grid.kind[k] == NodeKind::Unknown {
+                0.0
+            } else {
+                st.rhs[k]
+            }
+        })
+        .collect()
+}
+
+/// FGMRES + multigrid from the Dirichlet start to max|r| ≤ `tol` × flux scale: the solution
+/// and the iteration count.
+fn solve_mg(grid: &Grid, st: &Stencil, g: &[f64], tol: f64) -> (Vec<f64>, usize) {
+    let mut x = dirichlet_start(grid, st);
+    let mut ws = adi::AdiWorkspace::default();
+    let info = adi::solve_krylov(
+        grid,
+        st,
+        &mut x,
+        tol,
+        None,
+        400,
+        adi::Preconditioner::Multigrid,
+        Some(g),
+        &mut ws,
+    )
+    .unwrap();
+    (x, info.iterations)
+}
+
+// ------------------------------------------------------------------ transfer operators
+
+/// P and R as dense matrices, column by column (P e_I and R e_f).
+fn dense_transfers(nt: usize, nz: usize, fmask: &[f64]) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
+    let mut cmask = Vec::new();
+    coarse_mask(nt, nz, fmask, &mut cmask);
+    let (nf, nc) = (nt * nz, coarse_len(nt) * nz);
+    let mut p = vec![vec![0.0; nc]; nf];
+    let mut r = vec![vec![0.0; nf]; nc];
+    for c in 0..nc {
+        let mut e = vec![0.0; nc];
+        e[c] = cmask[c];
+        let mut col = vec![0.0; nf];
+        prolong_add(nt, nz, fmask, &e, &mut col);
+        for f in 0..nf {
+            p[f][c] = col[f];
+        }
+    }
+    for f in 0..nf {
+        let mut e = vec![0.0; nf];
+        e[f] = 1.0;
+        let mut col = vec![0.0; nc];
+        restrict(nt, nz, fmask, &cmask, &e, &mut col);
+        for c in 0..nc {
+            r[c][f] = col[c];
+        }
+    }
+    (p, r)
+}
+
+/// R = Pᵀ exactly (P restricted to the active coarse columns), for even and odd rings, with
+/// Dirichlet nodes scattered in; the weights are 0, ½ or 1 and no Dirichlet node is corrected.
+#[test]
+fn restriction_is_the_transpose_of_prolongation() {
+    let mut u = rng(0x9e37_79b9_7f4a_7c15);
+    for nt in [8, 11, 12, 15] {
+        let nz = 5;
+        let fmask: Vec<f64> = (0..nt * nz)
+            .map(|k| {
+                let j = k % nz;
+                if j == 0 || j + 1 == nz || u() < 0.2 {
+                    0.0
+                } else {
+                    1.0
+                }
+            })
+            .collect();
+        let (p, r) = dense_transfers(nt, nz, &fmask);
+        let nc = coarse_len(nt) * nz;
+        for f in 0..nt * nz {
+            for c in 0..nc {
+                assert_eq!(r[c][f], p[f][c], "n_θ {nt}: R[{c}][{f}] ≠ P[{f}][{c}]");
+                assert!([0.0, 0.5, 1.0].contains(&p[f][c]), "weight {}", p[f][c]);
+                if fmask[f] == 0.0 {
+                    assert_eq!(p[f][c], 0.0, "a Dirichlet node must not be corrected");
+                }
+            }
+        }
+    }
+}
+
+/// Linear interpolation reproduces constant fields everywhere and linear fields in θ on every
+/// interval of the coarse ring but the one that wraps around (where a linear function of θ is
+/// not periodic), for even and odd n_θ (odd: non-uniform last interval).
+#[test]
+fn prolongation_is_exact_for_constant_and_linear_fields() {
+    for nt in [12, 15] {
+        let nz = 4;
+        let fmask = vec![1.0; nt * nz];
+        let nc = coarse_len(nt);
+        // Coarse column I sits at fine column 2I.
+        let constant = vec![2.5; nc * nz];
+        let mut xf = vec![0.0; nt * nz];
+        prolong_add(nt, nz, &fmask, &constant, &mut xf);
+        assert!(xf.iter().all(|&v| v == 2.5), "n_θ {nt}: {xf:?}");
+        let linear: Vec<f64> = (0..nc * nz)
+            .map(|k| 0.3 + 1.7 * (2 * (k / nz)) as f64 - 0.2 * (k % nz) as f64)
+            .collect();
+        let mut xf = vec![0.0; nt * nz];
+        prolong_add(nt, nz, &fmask, &linear, &mut xf);
+        let last_interior = 2 * (nc - 1);
+        for f in 0..=last_interior {
+            for j in 0..nz {
+                let want = 0.3 + 1.7 * f as f64 - 0.2 * j as f64;
+                let got = xf[f * nz + j];
+                assert!(
+                    (got - want).abs() < 1e-13,
+                    "n_θ {nt} ({f}, {j}): {got} vs {want}"
+                );
+            }
+        }
+    }
+}
+
+/// The Galerkin operator of the constant-coefficient five-point stencil
+/// p = 2a + 2c, w = e = −a, s = n = −c with linear interpolation in θ is, in the interior,
+///
+/// ```text
+///   [ −c/4      −3c/2     −c/4   ]      (a-part: the θ-Laplacian (a/2)[−1 2 −1];
+///   [ (c−a)/2   a + 3c   (c−a)/2 ]       c-part: the θ-mass [¼ 3/2 ¼] ⊗ [−c 2c −c])
+///   [ −c/4      −3c/2     −c/4   ]
+/// ```
+///
+/// (worked out by hand from R A P; rows dz = +1, 0, −1; columns dθ = −1, 0, +1). Checked on an
+/// even ring, with zero row sums as in the fine rows, and identity rows at the ends.
+#[test]
+fn galerkin_operator_of_the_five_point_laplacian() {
+    let (nt, nz) = (12, 7);
+    let (a, c) = (1.3, 4.1);
+    let mut fine = Stencil9::default();
+    fine.reset(nt, nz);
+    let mut fmask = vec![0.0; nt * nz];
+    for i in 0..nt {
+        for j in 0..nz {
+            let k = i * nz + j;
+            if j == 0 || j + 1 == nz {
+                fine.c[C][k] = 1.0;
+                continue;
+            }
+            fmask[k] = 1.0;
+            fine.c[C][k] = 2.0 * a + 2.0 * c;
+            fine.c[W][k] = -a;
+            fine.c[E][k] = -a;
+            fine.c[S][k] = -c;
+            fine.c[N][k] = -c;
+        }
+    }
+    let mut cmask = Vec::new();
+    coarse_mask(nt, nz, &fmask, &mut cmask);
+    let mut coarse = Stencil9::default();
+    galerkin(&fine, &fmask, &cmask, &mut coarse);
+    let want = |di: isize, dj: isize| -> f64 {
+        match (di, dj) {
+            (0, 0) => a + 3.0 * c,
+            (_, 0) => 0.5 * (c - a),
+            (0, _) => -1.5 * c,
+            _ => -0.25 * c,
+        }
+    };
+    for ic in 0..coarse_len(nt) {
+        for j in 2..nz - 2 {
+            let k = ic * nz + j;
+            let mut sum = 0.0;
+            for di in -1..=1 {
+                for dj in -1..=1 {
+                    let got = coarse.c[at(di, dj)][k];
+                    sum += got;
+                    assert!(
+                        (got - want(di, dj)).abs() < 1e-13,
+                        "({ic}, {j}) offset ({di}, {dj}): {got} vs {}",
+                        want(di, dj)
+                    );
+                }
+            }
+            assert!(sum.abs() < 1e-13, "row sum {sum}");
+        }
+        assert_eq!(coarse.c[C][ic * nz], 1.0);
+        assert_eq!(coarse.c[C][ic * nz + nz - 1], 1.0);
+    }
+}
+
+/// The Galerkin operator is R A P: checked entry by entry against the dense triple product on
+/// an odd ring (non-uniform coarse ring) with scattered Dirichlet nodes and a random
+/// nine-point fine stencil.
+#[test]
+fn galerkin_operator_equals_the_dense_triple_product() {
+    let mut u = rng(0x2545_f491_4f6c_dd1d);
+    let (nt, nz) = (11, 6);
+    let n = nt * nz;
+    let mut fine = Stencil9::default();
+    fine.reset(nt, nz);
+    let fmask: Vec<f64> = (0..n)
+        .map(|k| {
+            let j = k % nz;
+            if j == 0 || j + 1 == nz || u() < 0.15 {
+                0.0
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    for k in 0..n {
+        let j = k % nz;
+        for di in -1isize..=1 {
+            for dj in -1isize..=1 {
+                let jj = j as isize + dj;
+                if jj >= 0 && jj < nz as isize {
+                    fine.c[at(di, dj)][k] = u() - 0.5;
+                }
+            }
+        }
+    }
+    let mut dense = vec![vec![0.0; n]; n];
+    for i in 0..nt {
+        for j in 0..nz {
+            let k = i * nz + j;
+            for di in -1isize..=1 {
+                for dj in -1isize..=1 {
+                    let jj = j as isize + dj;
+                    if jj >= 0 && jj < nz as isize {
+                        dense[k][wrap(i, di, nt) * nz + jj as usize] += fine.c[at(di, dj)][k];
+                    }
+                }
+            }
+        }
+    }
+    let (p, r) = dense_transfers(nt, nz, &fmask);
+    let mut cmask = Vec::new();
+    coarse_mask(nt, nz, &fmask, &mut cmask);
+    let mut coarse = Stencil9::default();
+    galerkin(&fine, &fmask, &cmask, &mut coarse);
+    let ncz = coarse_len(nt) * nz;
+    let mut ap = vec![vec![0.0; ncz]; n];
+    for f in 0..n {
+        for g in 0..n {
+            if dense[f][g] != 0.0 {
+                for c in 0..ncz {
+                    ap[f][c] += dense[f][g] * p[g][c];
+                }
+            }
+        }
+    }
+    let nc = coarse_len(nt);
+    for ic in 0..nc {
+        for j in 0..nz {
+            let kc = ic * nz + j;
+            let mut row = vec![0.0; ncz];
+            for f in 0..n {
+                if r[kc][f] != 0.0 {
+                    for c in 0..ncz {
+                        row[c] += r[kc][f] * ap[f][c];
+                    }
+                }
+            }
+            if cmask[kc] == 0.0 {
+                assert!(row.iter().all(|&v| v == 0.0));
+                assert_eq!(coarse.c[C][kc], 1.0, "inactive coarse node: identity row");
+                continue;
+            }
+            let mut got = vec![0.0; ncz];
+            for di in -1isize..=1 {
+                for dj in -1isize..=1 {
+                    let jj = j as isize + dj;
+                    if jj >= 0 && jj < nz as isize {
+                        got[wrap(ic, di, nc) * nz + jj as usize] += coarse.c[at(di, dj)][kc];
+                    }
+                }
+            }
+            for c in 0..ncz {
+                assert!(
+                    (got[c] - row[c]).abs() < 1e-14,
+                    "coarse row {kc} column {c}: {} vs R A P {}",
+                    got[c],
+                    row[c]
+                );
+            }
+        }
+    }
+}
+
+// ------------------------------------------------------------------ against the oracle
+
+/// Multigrid-preconditioned FGMRES agrees with the sparse-LU oracle on random frozen-switch
+/// systems of the real discretization: steady and time step, full film and cavitated (a random
+/// cavity arc plus random single flipped nodes), random ε, even and odd n_θ (odd rings coarsen
+/// into non-uniform coarse rings).
+///
+/// Tolerance: FGMRES stops at max|r| ≤ 1e-10 × flux scale (checked here again with the
+/// stencil's own residual, independently of the solver's stopping test). The error is A⁻¹ r;
+/// relative to max|ψ| it was measured at ≤ 3e-12 over these cases. The bound asked, 1e-8 of
+/// max|ψ_LU|, leaves the margin of the conditioning of the stiff pressure block and still
+/// fails for any solve that stalled or converged to something else.
+#[test]
+fn multigrid_krylov_matches_the_lu_oracle() {
+    let mut u = rng(0x5851_f42d_4c95_7f2d);
+    let grids = [(48, 9), (45, 11), (64, 13), (30, 7)];
+    let mut cavitated_seen = 0;
+    for case in 0..16 {
+        let (nt, nz) = grids[case % grids.len()];
+        let steady = case % 2 == 0;
+        let cavitated = case % 4 >= 2;
+        let e = 0.3 + 0.6 * u();
+        let a = std::f64::consts::TAU * u();
+        let eps = [e * a.cos(), e * a.sin()];
+        let arc0 = std::f64::consts::TAU * u();
+        let arc = 1.0 + 2.0 * u();
+        let flips: Vec<f64> = (0..nt * nz).map(|_| u()).collect();
+        let switch = move |grid: &Grid, k: usize| -> f64 {
+            if !cavitated {
+                return 1.0;
+            }
+            let th = (grid.theta(k / grid.n_z) - arc0).rem_euclid(std::f64::consts::TAU);
+            // A cavity arc (every ring keeps full nodes outside it, so a steady system stays
+            // nonsingular), with random single nodes flipped inside and out.
+            let inside = th < arc;
+            let flip = flips[k] < 0.05;
+            if inside != flip { 0.0 } else { 1.0 }
+        };
+        let (s, st, g) = frozen_system(
+            compressor(LinearSolver::MultigridKrylov, nt, nz),
+            eps,
+            (!steady).then_some(STEP * (0.5 + u())),
+            &switch,
+        );
+        cavitated_seen += g.iter().filter(|&&v| v == 0.0).count();
+        let (x, _) = solve_mg(&s.grid, &st, &g, 1e-10);
+        let mut r = vec![0.0; s.grid.len()];
+        let (rmax, scale) = st.residual(&s.grid, &x, &mut r);
+        assert!(
+            rmax <= 1e-10 * scale,
+            "case {case}: residual {rmax:e} scale {scale:e}"
+        );
+        let mut y = vec![0.0; s.grid.len()];
+        oracle::solve_lu(&s.grid, &st, &mut y).unwrap();
+        let ymax = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let err = x
+            .iter()
+            .zip(&y)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(
+            err <= 1e-8 * ymax,
+            "case {case} ({nt} × {nz}, steady {steady}, cavitated {cavitated}): \
+             max|x − x_LU| = {err:e}, max|x_LU| = {ymax:e}"
+        );
+    }
+    assert!(
+        cavitated_seen > 500,
+        "the cases must cavitate: {cavitated_seen}"
+    );
+}
+
+/// The same answer as the oracle through the whole semismooth Newton solve (steady and a time
+/// step, both cavitating): the multigrid film equals the LU film (same switch, pressures to
+/// 1e-7 of p_max: both stop at a mass residual of 1e-10 of the flux scale).
+#[test]
+fn multigrid_film_matches_the_lu_film() {
+    let mut films = Vec::new();
+    for solver in [LinearSolver::MultigridKrylov, LinearSolver::SparseLu] {
+        let mut s = ReynoldsSolver::new(compressor(solver, 60, 15)).unwrap();
+        let steady = s.solve_steady([0.0, -0.8], &running()).unwrap();
+        let state = s.initial_state([0.1, -0.6]);
+        let input = StepInput {
+            eccentricity_ratio: [0.12, -0.63],
+            dt: STEP,
+            conditions: running(),
+        };
+        let (step, _) = s.solve_step(&state, &input).unwrap();
+        assert!(steady.cavitated_fraction > 0.1 && step.cavitated_fraction > 0.05);
+        films.push((steady, step));
+    }
+    for (a, b) in [(&films[0].0, &films[1].0), (&films[0].1, &films[1].1)] {
+        assert_eq!(a.switch, b.switch, "same cavity");
+        let pmax = b.max_pressure;
+        let dp = a
+            .pressure
+            .iter()
+            .zip(b.pressure.iter())
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        assert!(dp <= 1e-7 * pmax, "max |Δp| {dp:e} of p_max {pmax:e}");
+    }
+}
+
+// ------------------------------------------------------------------ grid independence
+
+/// A switch pattern g(grid, node).
+type SwitchFn = dyn Fn(&Grid, usize) -> f64;
+
+/// Krylov iterations of one frozen solve (1e-10 from the Dirichlet start) on the three grids.
+fn iterations_on_grids(dt: Option<f64>, switch: &dyn Fn(&Grid, usize) -> f64) -> [usize; 3] {
+    [(60, 15), (120, 31), (240, 61)].map(|(nt, nz)| {
+        let (s, st, g) = frozen_system(
+            compressor(LinearSolver::MultigridKrylov, nt, nz),
+            [0.0, -0.8],
+            dt,
+            switch,
+        );
+        solve_mg(&s.grid, &st, &g, 1e-10).1
+    })
+}
+
+/// The cavity of the ε = (0, −0.8) film as a function of θ: the diverging half, from the
+/// minimum film (θ = 270°) round to just before the groove (θ = 90°).
+fn diverging_half(grid: &Grid, k: usize) -> f64 {
+    let th = grid.theta(k / grid.n_z).to_degrees();
+    if (85.0..=270.0).contains(&th) {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// Krylov iterations per solve grow by at most 1.3× from 60 × 15 to 240 × 61 (16× the nodes;
+/// the ADI preconditioner grows ~4×) for the same physical problem, ε = 0.8 with the feed
+/// groove: the steady full film (the first Newton system of a steady solve), a 1° time step
+/// with the full film, and a 1° time step with the film cavitated over the diverging half.
+/// Measured 7 / 7 / 7, 7 / 7 / 7 and 6 / 7 / 7.
+#[test]
+fn krylov_iterations_do_not_grow_with_the_grid() {
+    let cases: [(&str, Option<f64>, &SwitchFn); 3] = [
+        ("steady, full film", None, &|_, _| 1.0),
+        ("1° step, full film", Some(STEP), &|_, _| 1.0),
+        ("1° step, cavitated", Some(STEP), &diverging_half),
+    ];
+    for (name, dt, switch) in cases {
+        let it = iterations_on_grids(dt, switch);
+        let hi = *it.iter().max().unwrap();
+        assert!(
+            it[0] > 0 && hi as f64 <= 1.3 * it[0] as f64,
+            "{name}: iterations {it:?} on 60×15 / 120×31 / 240×61 grow more than 1.3×"
+        );
+    }
+}
+
+/// Known limit (issue 11 item 5, not met here): at the *converged* cavity of the real film the
+/// count still grows — steady film 7 / 9 / 12 from 60 × 15 to 240 × 61 (×1.7), a 1° time
+/// step 7 / 8 / 9 (×1.29) — against ~4× for the ADI preconditioner. The slow mode sits on the
+/// full-film nodes of the reformation front next to the groove, where a cavitated row (outside
+/// the coarse space) fixes the pressure of its full neighbour. The test keeps the measured
+/// bounds with a margin (steady ≤ 2×, step ≤ 1.5×) so that a regression shows.
+#[test]
+fn real_cavity_iteration_growth_is_bounded() {
+    let grids = [(60, 15), (120, 31), (240, 61)];
+    let mut steady_it = [0usize; 3];
+    let mut step_it = [0usize; 3];
+    for (slot, (nt, nz)) in grids.into_iter().enumerate() {
+        let mut s = ReynoldsSolver::new(compressor(LinearSolver::SparseLu, nt, nz)).unwrap();
+        let sol = s.solve_steady([0.0, -0.8], &running()).unwrap();
+        let sw: Vec<f64> = sol.switch.iter().copied().collect();
+        let (s, st, g) = frozen_system(
+            compressor(LinearSolver::MultigridKrylov, nt, nz),
+            [0.0, -0.8],
+            None,
+            &|_, k| sw[k],
+        );
+        assert!(g.contains(&0.0), "the steady film must cavitate");
+        steady_it[slot] = solve_mg(&s.grid, &st, &g, 1e-10).1;
+
+        let mut s = ReynoldsSolver::new(compressor(LinearSolver::SparseLu, nt, nz)).unwrap();
+        let state = s.initial_state([0.1, -0.6]);
+        let input = StepInput {
+            eccentricity_ratio: [0.12, -0.63],
+            dt: STEP,
+            conditions: running(),
+        };
+        let (step, _) = s.solve_step(&state, &input).unwrap();
+        let sw: Vec<f64> = step.switch.iter().copied().collect();
+        let (s, st, g) = frozen_system(
+            compressor(LinearSolver::MultigridKrylov, nt, nz),
+            [0.12, -0.63],
+            Some(STEP),
+            &|_, k| sw[k],
+        );
+        assert!(g.contains(&0.0), "the step must cavitate");
+        step_it[slot] = solve_mg(&s.grid, &st, &g, 1e-10).1;
+    }
+    assert!(
+        steady_it[2] as f64 <= 2.0 * steady_it[0] as f64,
+        "steady cavity: iterations {steady_it:?} grow more than 2×"
+    );
+    assert!(
+        step_it[2] as f64 <= 1.5 * step_it[0] as f64,
+        "1° step cavity: iterations {step_it:?} grow more than 1.5×"
+    );
+}
