@@ -1113,34 +1113,16 @@ mod method_failure_tests {
     //! are both in the report.
     use super::*;
 
-    const CASE: &str = r#"version = 1
-name = "two_methods"
-[bearing]
-radius_m = 0.02743
-length_m = 0.018288
-radial_clearance_m = 4.89e-5
-[[grooves]]
-center_angle_deg = 0.0
-axial_center_m = 0.0
-circumferential_length_m = 0.0249
-axial_width_m = 0.00381
-[lubricant]
-viscosity_pa_s = 0.02
-[operation]
-cycle_deg = 360.0
-crank_speed_rpm = 1800.0
-[load]
-crank_angle_deg = [0.0, 180.0]
-x_n = [-1500.0, -900.0]
-y_n = [0.0, 200.0]
-[feed]
-pressure_pa = 2.068e5
-[solver]
-rigorous_film = "short_bearing"
-"#;
+    const LOAD: &str =
+        "crank_angle_deg = [0.0, 180.0]\nx_n = [-1500.0, -900.0]\ny_n = [0.0, 200.0]";
 
     fn case() -> Case {
-        Case::from_text(CASE, Path::new("two_methods.toml")).expect("valid case")
+        let text = crate::case::test_case_text(
+            "two_methods",
+            LOAD,
+            "[solver]\nrigorous_film = \"short_bearing\"\n",
+        );
+        Case::from_text(&text, Path::new("two_methods.toml")).expect("valid case")
     }
 
     fn failing(case: &Case, _: &dyn RunObserver) -> Result<MethodResult, RunError> {
@@ -1216,40 +1198,13 @@ mod field_tests {
 
     #[test]
     fn film_thickness_field_matches_the_solvers_minimum() {
-        let text = r#"version = 1
-name = "coarse"
-[bearing]
-radius_m = 0.02743
-length_m = 0.018288
-radial_clearance_m = 4.89e-5
-[[grooves]]
-center_angle_deg = 0.0
-axial_center_m = 0.0
-circumferential_length_m = 0.0249
-axial_width_m = 0.00381
-[lubricant]
-viscosity_pa_s = 0.02
-[operation]
-cycle_deg = 360.0
-crank_speed_rpm = 1800.0
-[load]
-crank_angle_deg = [0.0, 180.0]
-x_n = [-1500.0, -900.0]
-y_n = [0.0, 200.0]
-[feed]
-pressure_pa = 2.068e5
-[grid]
-n_theta = 24
-n_z = 7
-[solver]
-time_steps_per_cycle = 36
-max_cycles = 1
-[output]
-field_snapshots = 6
-[methods]
-mobility = false
-"#;
-        let case = Case::from_text(text, Path::new("coarse.toml")).expect("valid case");
+        let text = crate::case::test_case_text(
+            "coarse",
+            "crank_angle_deg = [0.0, 180.0]\nx_n = [-1500.0, -900.0]\ny_n = [0.0, 200.0]",
+            "[grid]\nn_theta = 24\nn_z = 7\n[solver]\ntime_steps_per_cycle = 36\nmax_cycles = 1\n\
+             [output]\nfield_snapshots = 6\n[methods]\nmobility = false\n",
+        );
+        let case = Case::from_text(&text, Path::new("coarse.toml")).expect("valid case");
         let result = run_rigorous(&case, &Quiet).expect("the coarse case solves");
         let fields = result.fields.as_ref().expect("fields");
         let h = fields

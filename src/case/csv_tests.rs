@@ -4,41 +4,17 @@
 
 use super::{Case, CaseError};
 
-/// A valid case whose load comes from `load.csv` beside it.
-const CASE: &str = r#"version = 1
-name = "csv_reader"
+/// A valid case whose load comes from `load.csv` beside it (`load.file` on line 22).
+fn case_text() -> String {
+    super::test_case_text("csv_reader", "file = \"load.csv\"", "")
+}
 
-[bearing]
-radius_m = 0.02743
-length_m = 0.018288
-radial_clearance_m = 4.89e-5
-
-[[grooves]]
-center_angle_deg = 0.0
-axial_center_m = 0.0
-circumferential_length_m = 0.0249
-axial_width_m = 0.00381
-
-[lubricant]
-viscosity_pa_s = 0.02
-
-[operation]
-cycle_deg = 360.0
-crank_speed_rpm = 1800.0
-
-[load]
-file = "load.csv"
-
-[feed]
-pressure_pa = 2.068e5
-"#;
-
-/// Parse [`CASE`] with `csv` as its load table (written to a fresh directory).
+/// Parse [`case_text`] with `csv` as its load table (written to a fresh directory).
 fn with_table(csv: &[u8]) -> (tempfile::TempDir, Result<Case, CaseError>) {
     let dir = tempfile::tempdir().expect("temporary directory");
     std::fs::write(dir.path().join("load.csv"), csv).expect("write the table");
     let case_path = dir.path().join("case.toml");
-    let result = Case::from_text(CASE, &case_path);
+    let result = Case::from_text(&case_text(), &case_path);
     (dir, result)
 }
 
@@ -73,7 +49,7 @@ fn rejections_name_the_file_line_one_based_past_comments_and_blank_lines() {
     let (dir, r) = with_table(csv);
     let message = r.expect_err("a bad cell").to_string();
     let expected = format!(
-        "{}:6: column 'load_x_n': 'x1' is not a finite number (table given by load.file at {}:23)",
+        "{}:6: column 'load_x_n': 'x1' is not a finite number (table given by load.file at {}:22)",
         dir.path().join("load.csv").display(),
         dir.path().join("case.toml").display()
     );
@@ -126,7 +102,8 @@ fn a_vogel_law_sets_the_viscosity_from_the_temperature() {
     use jbearing_solvers::viscosity::{Temperature, Vogel};
     let vogel = "\n[lubricant.vogel]\na_pa_s = 1.446e-4\nb_c = 917.1\nc_c = -70.0\n";
     let text = |temperature: &str| {
-        CASE.replace("viscosity_pa_s = 0.02\n", "")
+        case_text()
+            .replace("viscosity_pa_s = 0.02\n", "")
             .replace("[operation]", &format!("{vogel}{temperature}\n[operation]"))
     };
     let dir = tempfile::tempdir().unwrap();

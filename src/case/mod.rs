@@ -19,6 +19,41 @@ pub use error::{CaseWarning, WarningKind};
 #[cfg(test)]
 mod csv_tests;
 
+/// A valid case text for unit tests: the compressor main bearing's geometry (Yu & Sawicki
+/// Table II) with one groove and a 0.2068 MPa feed, named `name`, with the `[load]` body `load`
+/// and the extra tables `extra` appended. `[load]` is on line 21, its first key on line 22.
+#[cfg(test)]
+pub(crate) fn test_case_text(name: &str, load: &str, extra: &str) -> String {
+    format!(
+        r#"version = 1
+name = "{name}"
+
+[bearing]
+radius_m = 0.02743
+length_m = 0.018288
+radial_clearance_m = 4.89e-5
+
+[[grooves]]
+center_angle_deg = 0.0
+axial_center_m = 0.0
+circumferential_length_m = 0.0249
+axial_width_m = 0.00381
+
+[lubricant]
+viscosity_pa_s = 0.02
+
+[operation]
+cycle_deg = 360.0
+crank_speed_rpm = 1800.0
+[load]
+{load}
+
+[feed]
+pressure_pa = 2.068e5
+{extra}"#
+    )
+}
+
 use std::path::{Path, PathBuf};
 
 use jbearing_solvers::closed_form::{ClosedFormError, ClosedFormModel};
