@@ -1,12 +1,15 @@
 //! Reynolds-solver benches (one core).
 //!
-//! - `reynolds/cold_steady/<grid>`: a steady film from a cold start (full film at ambient) at
-//!   the default grid 120 × 31 (29 axial cells) and at 2× (240 × 60) refinement in each
-//!   direction (the 4× grid, 480 × 118, takes ~10 s per solve with the present preconditioner and
-//!   is left out so that the CI run stays short): L/D = 1, ε = 0.6, the Butenschön problem (supply line at h_max), ADI-Krylov.
+//! - `reynolds/cold_steady/<preconditioner>/<grid>`: a steady film from a cold start (full film
+//!   at ambient) at the default grid 120 × 31 (29 axial cells) and at 2× (240 × 60) refinement
+//!   in each direction (the 4× grid, 480 × 118, is left out so that the CI run stays short):
+//!   L/D = 1, ε = 0.6, the Butenschön problem (supply line at h_max), with the multigrid
+//!   preconditioner (the default) and the ADI one, measured in one run so that their ratio
+//!   compares.
 //! - `reynolds/cold_steady_lu/120x31`: the same with the sparse-LU oracle, for comparison.
 //! - `reynolds/warm_step/120x31`: one backward-Euler step of a grooved bearing whirling at
-//!   ε = 0.6 (1° of whirl per step), warm-started from the previous step's film.
+//!   ε = 0.6 (1° of whirl per step), warm-started from the previous step's film (the default
+//!   linear solver, multigrid-Krylov).
 use criterion::Criterion;
 use jbearing_solvers::reynolds::{
     GridParams, Groove, LinearSolver, OperatingConditions, ReynoldsParams, ReynoldsSolver,
@@ -31,15 +34,22 @@ pub fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("reynolds");
     // Solves take 0.03–1.5 s: ten samples keep the run (and the CI run) short.
     group.sample_size(10);
-    for (nt, nz) in [(120, 31), (240, 60)] {
+    let preconditioners = [
+        ("multigrid", LinearSolver::MultigridKrylov),
+        ("adi", LinearSolver::AdiKrylov),
+    ];
+    for ((name, linear), (nt, nz)) in preconditioners
+        .into_iter()
+        .flat_map(|l| [(120, 31), (240, 60)].map(move |g| (l, g)))
+    {
         let mut s = steady_solver(
             GridParams {
                 n_theta: nt,
                 n_z: nz,
             },
-            LinearSolver::AdiKrylov,
+            linear,
         );
-        group.bench_function(format!("cold_steady/{nt}x{nz}"), |b| {
+        group.bench_function(format!("cold_steady/{name}/{nt}x{nz}"), |b| {
             b.iter(|| {
                 black_box(
                     s.solve_steady(black_box([0.6, 0.0]), &cond)
