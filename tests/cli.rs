@@ -22,6 +22,15 @@ fn jbearing(args: &[&str]) -> Output {
         .expect("run jbearing")
 }
 
+/// `jbearing run CASE --out OUT EXTRA…`.
+fn run_into(case: impl AsRef<Path>, out: &Path, extra: &[&str]) -> Output {
+    let case = case.as_ref().to_str().expect("UTF-8 path");
+    let out = out.to_str().expect("UTF-8 path");
+    let mut args = vec!["run", case, "--out", out];
+    args.extend_from_slice(extra);
+    jbearing(&args)
+}
+
 fn text(b: &[u8]) -> String {
     String::from_utf8_lossy(b).into_owned()
 }
@@ -140,12 +149,7 @@ fn assert_case_files(dir: &Path, name: &str) {
 #[test]
 fn run_writes_the_flores_case_files() {
     let dir = tempfile::tempdir().unwrap();
-    let out = jbearing(&[
-        "run",
-        "cases/flores2006_mobility.toml",
-        "--out",
-        dir.path().to_str().unwrap(),
-    ]);
+    let out = run_into("cases/flores2006_mobility.toml", dir.path(), &[]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert_case_files(dir.path(), "flores2006_mobility");
     // The summary CSV holds the mobility answer's h_min: seed 000's safe-film rule asks for
@@ -297,12 +301,7 @@ fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
     let dir = tempfile::tempdir().unwrap();
     let case = flores_short_bearing_case(dir.path(), "");
     let out_dir = dir.path().join("out");
-    let out = jbearing(&[
-        "run",
-        case.to_str().unwrap(),
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]);
+    let out = run_into(case, &out_dir, &[]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     // The run statistics that say how far to trust the orbit are in the file: stalled steps
     // are accepted only up to the default accept_tolerance (1e-2).
@@ -400,12 +399,7 @@ fn an_unusable_output_directory_is_found_before_the_solve() {
     let file = dir.path().join("a_file");
     std::fs::write(&file, "not a directory").unwrap();
     let out_dir = file.join("results");
-    let out = jbearing(&[
-        "run",
-        "cases/flores2006_mobility.toml",
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]);
+    let out = run_into("cases/flores2006_mobility.toml", &out_dir, &[]);
     assert!(!out.status.success());
     let stderr = text(&out.stderr);
     assert!(
@@ -426,12 +420,7 @@ fn a_single_cycle_run_keeps_its_result() {
     let dir = tempfile::tempdir().unwrap();
     let case = flores_short_bearing_case(dir.path(), "\nmax_cycles = 1");
     let out_dir = dir.path().join("out");
-    let out = jbearing(&[
-        "run",
-        case.to_str().unwrap(),
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]);
+    let out = run_into(case, &out_dir, &[]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     // The status column says what a user must know: one cycle is not a periodic orbit.
     let stdout = text(&out.stdout);
@@ -673,13 +662,13 @@ fn implausible_inputs_are_warned_about_and_recorded() {
     // A run that survives its implausible value: the Flores mobility case with a 1 TPa bulk
     // modulus (which the mobility method does not use).
     let text_in = std::fs::read_to_string(root().join("cases/flores2006_mobility.toml")).unwrap();
-    let viscous = dir.path().join("viscous.toml");
+    let stiff_oil = dir.path().join("stiff_oil.toml");
     let line = text_in
         .lines()
         .find(|l| l.starts_with("viscosity_pa_s"))
         .unwrap();
     std::fs::write(
-        &viscous,
+        &stiff_oil,
         text_in.replace(line, &format!("{line}\nbulk_modulus_pa = 1e12")),
     )
     .unwrap();
@@ -689,13 +678,7 @@ fn implausible_inputs_are_warned_about_and_recorded() {
     )
     .unwrap();
     let out_dir = dir.path().join("out");
-    let out = jbearing(&[
-        "run",
-        viscous.to_str().unwrap(),
-        "--no-progress",
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]);
+    let out = run_into(stiff_oil, &out_dir, &["--no-progress"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stderr = text(&out.stderr);
     assert!(
@@ -728,13 +711,7 @@ fn a_failed_method_gives_a_failed_row_and_exit_status_one() {
     let case = flores_short_bearing_case(dir.path(), "\neccentricity_limit = 0.15");
     let out_dir = dir.path().join("out");
     let c = case.to_str().unwrap();
-    let out = jbearing(&[
-        "run",
-        c,
-        "--no-progress",
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]);
+    let out = run_into(c, &out_dir, &["--no-progress"]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
     let failed = stdout
@@ -825,13 +802,11 @@ fn stale_temporaries_of_killed_runs_are_removed() {
     for f in [&stale, &alive, &unrelated] {
         std::fs::write(f, "partial").unwrap();
     }
-    let out = jbearing(&[
-        "run",
+    let out = run_into(
         "cases/flores2006_mobility.toml",
-        "--no-progress",
-        "--out",
-        dir.path().to_str().unwrap(),
-    ]);
+        dir.path(),
+        &["--no-progress"],
+    );
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert!(!stale.exists(), "the stale temporary is still there");
     assert!(alive.exists() && unrelated.exists());
