@@ -31,6 +31,7 @@
 //!   the steady load → eccentricity Newton solve.
 
 pub mod closed_form;
+pub mod heat_balance;
 pub mod inverse;
 pub mod load;
 pub mod mobility;

@@ -299,3 +299,173 @@ fn table_2_vogel_barus_rows() {
         assert!(info.force_residual < 1e-6 * 3.6e6 / 0.3 * 50.0);
     }
 }
+
+/// The infinitely long bearing with Reynolds (Swift–Stieber) conditions, solved independently
+/// of the Reynolds solver: the 1-D equation d/dφ(h³ p') = 6 μ ω R² h' integrated once,
+///
+/// ```text
+///   p'(φ) = 6 μ ω R² (h − h*) / h³,   h = c (1 + ε cos φ),  φ from h_max in the direction
+///   p(0) = 0 (supply at h_max),        p(φ₂) = p'(φ₂) = 0 where h(φ₂) = h*, π < φ₂ < 2π,
+/// ```
+///
+/// p = A(φ) − h* B(φ) with A = ∫ 6μωR²/h², B = ∫ 6μωR²/h³ (Simpson, 40 000 panels), h* by
+/// bisection on p(φ₂(h*)) = 0, the load per unit length W = R ∫ p (cos φ, sin φ) dφ, and ε by
+/// bisection on |W| = the load per unit length. Returns (e (m), p_max (Pa), θ_pmax from the load
+/// line (deg), θ_h0 = attitude (deg)).
+fn swift_stieber_long_bearing(mu: f64, load_per_length: f64) -> (f64, f64, f64, f64) {
+    let (r, c) = (0.25, 0.25e-3);
+    let omega = 65.0 * 2.0 * std::f64::consts::PI / 60.0;
+    let k = 6.0 * mu * omega * r * r;
+    let tau = 2.0 * std::f64::consts::PI;
+    let n = 40_000;
+    // Pressure profile for (ε, h*) on φ ∈ [0, φ₂], p on the nodes (Simpson on pairs of panels
+    // for the end value, trapezoid-free: cumulative Simpson over each pair, linear inside).
+    let profile = |eps: f64, h_star: f64| -> (Vec<f64>, Vec<f64>) {
+        let phi2 = tau - ((h_star / c - 1.0) / eps).clamp(-1.0, 1.0).acos();
+        let dphi = phi2 / n as f64;
+        let dp = |phi: f64| {
+            let h = c * (1.0 + eps * phi.cos());
+            k * (h - h_star) / (h * h * h)
+        };
+        let mut phis = vec![0.0];
+        let mut p = vec![0.0];
+        for i in 0..n {
+            let (a, b) = (i as f64 * dphi, (i + 1) as f64 * dphi);
+            let step = dphi / 6.0 * (dp(a) + 4.0 * dp(0.5 * (a + b)) + dp(b));
+            phis.push(b);
+            p.push(p[i] + step);
+        }
+        (phis, p)
+    };
+    let end_pressure = |eps: f64, h_star: f64| *profile(eps, h_star).1.last().unwrap();
+    let solve_h_star = |eps: f64| {
+        // p(φ₂) > 0 for h* near h_min (too little outflow), < 0 near h_max.
+        let (mut lo, mut hi) = (
+            c * (1.0 - eps) * (1.0 + 1e-9),
+            c * (1.0 + eps) * (1.0 - 1e-9),
+        );
+        for _ in 0..80 {
+            let mid = 0.5 * (lo + hi);
+            if end_pressure(eps, mid) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    let load = |eps: f64| {
+        let (phis, p) = profile(eps, solve_h_star(eps));
+        let mut w = [0.0, 0.0];
+        for i in 0..n {
+            let dphi = phis[i + 1] - phis[i];
+            for (a, b) in [(phis[i], p[i]), (phis[i + 1], p[i + 1])] {
+                w[0] += 0.5 * dphi * r * b * a.cos();
+                w[1] += 0.5 * dphi * r * b * a.sin();
+            }
+        }
+        (w, phis, p)
+    };
+    let (mut lo, mut hi) = (0.5, 0.999);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        let (w, _, _) = load(mid);
+        if w[0].hypot(w[1]) < load_per_length {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let eps = 0.5 * (lo + hi);
+    let (w, phis, p) = load(eps);
+    let phi_w = w[1].atan2(w[0]);
+    let (i_max, p_max) = p
+        .iter()
+        .enumerate()
+        .fold((0, f64::MIN), |m, (i, &v)| if v > m.1 { (i, v) } else { m });
+    (
+        eps * c,
+        p_max,
+        (phis[i_max] - phi_w).to_degrees(),
+        (std::f64::consts::PI - phi_w).to_degrees(),
+    )
+}
+
+/// Table 2's two R&B rows ("L/D ~ ∞", read by the seed from Raimondi & Boyd's charts at the
+/// rows' Sommerfeld numbers) as a check of the L/D → ∞ limit, with an independent long-bearing
+/// solution between them and our plane model.
+///
+/// 1. Our plane model (the 2-D JFO solver on a bearing 100 diameters long, 240 × 101) against
+///    the independent 1-D Swift–Stieber solution at the same load per unit length: e within
+///    0.3 % (the plane model's end zones carry ≈ 1 % less load per length, which moves e by
+///    ≈ 0.1 %; JFO and Swift–Stieber differ only by the film's compressibility at β = 1.5e13),
+///    p_max within 2 % (a sharp peak sampled every 1.5°), angles within 1°.
+/// 2. R&B's JB1 row (S = 0.00786): e within 1.5 %, p_max within 5 %, θ_pmax within 2° (the JB1
+///    tolerances) — both solutions reproduce it.
+/// 3. R&B's JB2 row (S = 0.00298) is not reproduced and cannot be: its p_max, 205.5 MPa, is
+///    50 % above both the independent long-bearing solution and the seed's own numerical row
+///    (136.92 MPa), and its θ_pmax (6.6°) 3.5° from both; the seed itself attributes this to
+///    reading R&B's charts at a Sommerfeld number below their range. Asserted: the long-bearing
+///    p_max is within 5 % of the seed's numerical 136.92 MPa and more than 30 % below the R&B
+///    reading; e (0.2447 mm) is still within 1.5 %.
+#[test]
+fn raimondi_boyd_long_bearing_rows() {
+    let per_length = 3.6e6 / 0.3;
+    let c = 0.25e-3;
+    for (name, mu, rb_e_mm, rb_p_mpa, rb_angle) in [
+        ("JB1", 0.1678, 0.2352, 87.30, 15.50),
+        ("JB2", 0.0655, 0.2447, 205.50, 6.60),
+    ] {
+        let (e1, p1, a1, h1) = swift_stieber_long_bearing(mu, per_length);
+        let model = ViscosityModel {
+            vogel: Vogel {
+                a: mu,
+                b: 0.0,
+                c: -273.15,
+            },
+            temperature: Temperature::Constant(20.0),
+            pressure_coefficient: 0.0,
+        };
+        let (e2, p2, a2, h2, _) = jb(1.5e13, Some(model), 240, 101);
+        eprintln!(
+            "{name} L/D→∞: R&B e {rb_e_mm:.4} mm, p_max {rb_p_mpa:.2} MPa at {rb_angle:.2}° | \
+             Swift–Stieber 1-D e {:.4} mm, p_max {:.2} MPa at {a1:.2}°, θ_h0 {h1:.2}°, h_0 {:.4} mm | \
+             plane model e {:.4} mm, p_max {:.2} MPa at {a2:.2}°, θ_h0 {h2:.2}°",
+            e1 * 1e3,
+            p1 / 1e6,
+            (c - e1) * 1e3,
+            e2 * 1e3,
+            p2 / 1e6
+        );
+        assert!(
+            (e2 / e1 - 1.0).abs() < 0.003,
+            "{name}: plane {e2} vs 1-D {e1}"
+        );
+        assert!(
+            (p2 / p1 - 1.0).abs() < 0.02,
+            "{name}: plane {p2} vs 1-D {p1}"
+        );
+        assert!(
+            (a2 - a1).abs() < 1.0 && (h2 - h1).abs() < 1.0,
+            "{name}: angles"
+        );
+        for e in [e1, e2] {
+            assert!(
+                (e * 1e3 / rb_e_mm - 1.0).abs() < 0.015,
+                "{name}: e {e} vs R&B"
+            );
+        }
+        if name == "JB1" {
+            for (p, a) in [(p1, a1), (p2, a2)] {
+                assert!((p / 1e6 / rb_p_mpa - 1.0).abs() < 0.05, "JB1: p_max {p}");
+                assert!((a - rb_angle).abs() < 2.0, "JB1: θ_pmax {a}");
+            }
+        } else {
+            assert!((p1 / 136.92e6 - 1.0).abs() < 0.05, "JB2: 1-D p_max {p1}");
+            assert!(
+                p1 / 1e6 < 0.7 * rb_p_mpa,
+                "JB2: the R&B reading is off the charts"
+            );
+        }
+    }
+}

@@ -102,6 +102,7 @@ impl ClosedFormFilm {
             cavitated_fraction: if half { 0.5 } else { 0.0 },
             side_leakage: [end_flow, end_flow],
             supply_flow: Vec::new(),
+            recirculated_flow: 0.0,
             friction_torque_journal: -shear - 0.5 * e_cross_f,
             friction_torque_bearing: shear - 0.5 * e_cross_f,
             power_loss: shear * omega + squeeze_power,

@@ -67,7 +67,7 @@ mod types;
 pub use reynolds_film::{ReynoldsFilm, film_response};
 
 pub use short_bearing::{ShortBearingFilm, ShortBearingParams, ShortBearingState, TimeScheme};
-pub use solve::solve_inverse;
+pub use solve::{InverseStart, solve_inverse, solve_inverse_from};
 pub use types::{
     CycleSummary, FieldSnapshot, InverseError, InverseInfo, InverseObserver, InverseParams,
     InversePhase, InverseProgress, InverseSolution, InverseStep, InverseWarning, JacobianMethod,
@@ -118,6 +118,9 @@ pub struct FilmResponse {
     pub side_leakage: [f64; 2],
     /// Net flux out of each feed groove into the film (m³/s, signed; negative = back-flow).
     pub supply_flow: Vec<f64>,
+    /// Film oil arriving at the feed grooves (m³/s): the circumferential flow across their
+    /// leading edges, summed; 0 for models without a film field or grooves.
+    pub recirculated_flow: f64,
     /// Friction torque of the film on the journal (N·m, counter-clockwise positive).
     pub friction_torque_journal: f64,
     /// Friction torque of the film on the bearing (N·m, counter-clockwise positive).

@@ -79,6 +79,7 @@ pub fn film_response(sol: FilmSolution, capture: bool) -> FilmResponse {
         cavitated_fraction: sol.cavitated_fraction,
         side_leakage: sol.side_leakage,
         supply_flow: sol.supply_flow,
+        recirculated_flow: sol.recirculated_flow,
         friction_torque_journal: sol.friction_torque_journal,
         friction_torque_bearing: sol.friction_torque_bearing,
         power_loss: sol.power_loss,

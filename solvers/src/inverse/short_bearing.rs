@@ -171,6 +171,7 @@ impl FilmModel for ShortBearingFilm {
             cavitated_fraction: if umag > 0.0 { 0.5 } else { 0.0 },
             side_leakage: [end_flow, end_flow],
             supply_flow: Vec::new(),
+            recirculated_flow: 0.0,
             friction_torque_journal: -shear_torque - 0.5 * e_cross_f,
             friction_torque_bearing: shear_torque - 0.5 * e_cross_f,
             power_loss: shear_torque * dw + squeeze_power,

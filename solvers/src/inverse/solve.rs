@@ -101,6 +101,28 @@ where
     L: LoadHistory + ?Sized,
     O: InverseObserver + ?Sized,
 {
+    solve_inverse_from(params, load, film, observer, None).map(|(solution, _)| solution)
+}
+
+/// [`solve_inverse`] started from `start` — the journal and film at the end of a cycle of an
+/// earlier solve of a nearby problem (the same bearing at another viscosity, in a heat
+/// balance) — instead of the run-in from ε = 0; `None` runs the run-in. Also returns where
+/// this solve ended, to start the next one from. The periodic answer does not depend on the
+/// start (the cycles continue until the periodicity test holds; the first cycle is never
+/// periodic), only the number of cycles does. The start must come from the same film model,
+/// grid and time step.
+pub fn solve_inverse_from<F, L, O>(
+    params: &InverseParams,
+    load: &L,
+    film: &mut F,
+    observer: &mut O,
+    start_from: Option<InverseStart<F::State>>,
+) -> Result<(InverseSolution, InverseStart<F::State>), InverseError>
+where
+    F: FilmModel + ?Sized,
+    L: LoadHistory + ?Sized,
+    O: InverseObserver + ?Sized,
+{
     let start = Instant::now();
     validate(params)?;
     let period = load.period();
@@ -177,13 +199,24 @@ where
         Ok(c)
     };
 
-    // ---- run-in: from ε = 0, full film, quasi-load ramped to W(0) at the conditions of t = 0.
-    let mut orbit = Orbit {
-        eps: [0.0; 2],
-        prev: [0.0; 2],
-        prev2: [0.0; 2],
-        state: film.initial_state([0.0; 2]),
+    // ---- run-in: from ε = 0, full film, quasi-load ramped to W(0) at the conditions of t = 0
+    // (none from a given start).
+    let warm = start_from.is_some();
+    let mut orbit = match start_from {
+        Some(s) => Orbit {
+            eps: s.eccentricity_ratio,
+            prev: s.previous[0],
+            prev2: s.previous[1],
+            state: s.state,
+        },
+        None => Orbit {
+            eps: [0.0; 2],
+            prev: [0.0; 2],
+            prev2: [0.0; 2],
+            state: film.initial_state([0.0; 2]),
+        },
     };
+    let run_in = if warm { 0 } else { run_in };
     let w0 = load.load(0.0);
     let cond0 = conditions_at(0.0)?;
     // The ramp as a function of time (also at the midpoints of split steps).
@@ -291,7 +324,12 @@ where
         film_state_tolerance: params.film_state_tolerance,
     });
     let summary = summarize(&records);
-    Ok(InverseSolution {
+    let end = InverseStart {
+        eccentricity_ratio: orbit.eps,
+        previous: [orbit.prev, orbit.prev2],
+        state: orbit.state,
+    };
+    let solution = InverseSolution {
         steps: records,
         fields: snapshots,
         summary,
@@ -317,7 +355,8 @@ where
             split_steps: stepper.stats.split,
             wall_time: start.elapsed().as_secs_f64(),
         },
-    })
+    };
+    Ok((solution, end))
 }
 
 /// max_i |ε_i − ε_i(previous cycle)| over the cycle's steps; ∞ for the first cycle.
@@ -443,6 +482,7 @@ fn record<S>(acc: &Accepted<S>, w: [f64; 2], time: f64, crank: f64) -> InverseSt
         cavitated_fraction: r.cavitated_fraction,
         side_leakage: r.side_leakage,
         supply_flow: r.supply_flow.clone(),
+        recirculated_flow: r.recirculated_flow,
         power_loss: r.power_loss,
         friction_torque_journal: r.friction_torque_journal,
         friction_torque_bearing: r.friction_torque_bearing,
@@ -515,6 +555,19 @@ struct Leg {
 /// The journal's last three accepted positions (the quadratic predictor's data) and the film
 /// state at the last one: what the march carries from step to step, in the run-in and in the
 /// cycles alike.
+/// Where an inverse solve starts or ended ([`solve_inverse_from`]): the journal's position
+/// ε at the end of a cycle, its two positions before (for the Newton's first guesses), and
+/// the film model's state there.
+#[derive(Debug, Clone)]
+pub struct InverseStart<S> {
+    /// ε at the start (t = 0 of the cycle).
+    pub eccentricity_ratio: [f64; 2],
+    /// ε one and two steps before.
+    pub previous: [[f64; 2]; 2],
+    /// The film state at the start.
+    pub state: S,
+}
+
 struct Orbit<S> {
     eps: [f64; 2],
     prev: [f64; 2],

@@ -182,6 +182,8 @@ pub struct InverseStep {
     pub side_leakage: [f64; 2],
     /// Supply flow per groove (m³/s, signed).
     pub supply_flow: Vec<f64>,
+    /// Film oil arriving at the feed grooves (m³/s, [`super::FilmResponse::recirculated_flow`]).
+    pub recirculated_flow: f64,
     /// Power loss (W).
     pub power_loss: f64,
     /// Friction torque on the journal (N·m).

@@ -328,6 +328,12 @@ pub struct FilmSolution {
     pub supply_flow: Vec<f64>,
     /// Net flow out of the axial supply line (AxialLineAtMaxGap), else 0, m³/s.
     pub supply_line_flow: f64,
+    /// Film oil arriving at the feed grooves, m³/s: the circumferential flow across each
+    /// groove's leading edge (the first groove column in the direction of the surface motion),
+    /// over the whole width (into the groove and past it beside it), summed over the grooves;
+    /// 0 without grooves. The recirculated flow of the heat balance
+    /// ([`crate::heat_balance`]).
+    pub recirculated_flow: f64,
     /// Torque of the film on the journal about +z, N·m (negative: resists U > 0).
     pub friction_torque_journal: f64,
     /// Torque of the film on the bearing about +z, N·m.
@@ -620,15 +626,6 @@ impl ReynoldsSolver {
                 what: "solve_step: the axial supply line at h_max is a steady model (use SupplyModel::Grooves)",
             });
         }
-        if self
-            .params
-            .viscosity_model
-            .is_some_and(|m| m.pressure_coefficient > 0.0)
-        {
-            return Err(ReynoldsError::Unsupported {
-                what: "solve_step: a pressure-dependent viscosity (α > 0) is supported in steady solves only; time steps take a temperature-dependent viscosity with α = 0",
-            });
-        }
         if !(input.dt > 0.0 && input.dt.is_finite()) {
             return Err(ReynoldsError::InvalidParameter {
                 name: "dt",
@@ -698,35 +695,45 @@ impl ReynoldsSolver {
             old_content: &old_content,
             old_outflow: old_outflow.as_deref(),
         };
-        let core = match &bdf2 {
-            Some((dt_eff, history)) => {
-                let time = TimeTerm::Step {
-                    dt: *dt_eff,
-                    old_content: history,
-                    old_outflow: None,
-                };
-                match self.solve_core(
-                    input.eccentricity_ratio,
-                    &input.conditions,
-                    time,
-                    Some((psi0.clone(), g0.clone())),
-                ) {
-                    // Positivity fallback: the same step by backward Euler.
-                    Err(ReynoldsError::NegativeFilmFraction { .. }) => self.solve_core(
-                        input.eccentricity_ratio,
-                        &input.conditions,
-                        backward_euler,
-                        Some((psi0, g0)),
-                    )?,
-                    other => other?,
+        let alpha = self
+            .params
+            .viscosity_model
+            .map_or(0.0, |m| m.pressure_coefficient);
+        let core = if alpha > 0.0 {
+            // Picard on the viscosity field, as in steady solves, started from the pressure of
+            // the start film (the previous step's or Newton iterate's film, close to this one:
+            // the low, physical branch of p ∝ μ₀ exp(α p)).
+            let beta = self.params.bulk_modulus;
+            self.viscosity_pressure = psi0
+                .iter()
+                .zip(&g0)
+                .map(|(psi, g)| g * beta * psi.max(0.0))
+                .collect();
+            let mut warm = (psi0, g0);
+            let mut change = f64::INFINITY;
+            let mut converged = None;
+            for _ in 0..VISCOSITY_PICARD_MAX {
+                let core = self.step_core(input, bdf2.as_ref(), backward_euler, warm.clone())?;
+                change = core
+                    .psi
+                    .iter()
+                    .zip(&self.viscosity_pressure)
+                    .map(|(psi, p_old)| (alpha * (beta * psi.max(0.0) - p_old)).exp_m1().abs())
+                    .fold(0.0, f64::max);
+                self.viscosity_pressure = core.psi.iter().map(|psi| beta * psi.max(0.0)).collect();
+                if change <= VISCOSITY_PICARD_TOLERANCE {
+                    converged = Some(core);
+                    break;
                 }
+                warm = (core.psi.clone(), core.g.clone());
             }
-            None => self.solve_core(
-                input.eccentricity_ratio,
-                &input.conditions,
-                backward_euler,
-                Some((psi0, g0)),
-            )?,
+            converged.ok_or(ReynoldsError::ViscosityNotConverged {
+                iterations: VISCOSITY_PICARD_MAX,
+                change,
+                tolerance: VISCOSITY_PICARD_TOLERANCE,
+            })?
+        } else {
+            self.step_core(input, bdf2.as_ref(), backward_euler, (psi0, g0))?
         };
         let sol = outputs::film_solution(
             &self.params,
@@ -900,6 +907,48 @@ impl ReynoldsSolver {
         conditions: &OperatingConditions,
     ) -> Result<(FilmSolution, SteadyLoadInfo), ReynoldsError> {
         steady_load::solve(self, load, conditions)
+    }
+
+    /// One time step's discrete problem at the current viscosity field: BDF2 when the state
+    /// has a previous level (`bdf2`: Δt/a₀ and the history), with backward Euler as the
+    /// positivity fallback; backward Euler (or Crank–Nicolson) otherwise.
+    fn step_core(
+        &mut self,
+        input: &StepInput,
+        bdf2: Option<&(f64, Vec<f64>)>,
+        backward_euler: TimeTerm<'_>,
+        start: (Vec<f64>, Vec<f64>),
+    ) -> Result<Core, ReynoldsError> {
+        match bdf2 {
+            Some((dt_eff, history)) => {
+                let time = TimeTerm::Step {
+                    dt: *dt_eff,
+                    old_content: history,
+                    old_outflow: None,
+                };
+                match self.solve_core(
+                    input.eccentricity_ratio,
+                    &input.conditions,
+                    time,
+                    Some(start.clone()),
+                ) {
+                    // Positivity fallback: the same step by backward Euler.
+                    Err(ReynoldsError::NegativeFilmFraction { .. }) => self.solve_core(
+                        input.eccentricity_ratio,
+                        &input.conditions,
+                        backward_euler,
+                        Some(start),
+                    ),
+                    other => other,
+                }
+            }
+            None => self.solve_core(
+                input.eccentricity_ratio,
+                &input.conditions,
+                backward_euler,
+                Some(start),
+            ),
+        }
     }
 
     fn steady_core(

@@ -12,6 +12,8 @@
 //!   other. Side leakage = net inflow into each end; supply flow = net outflow of each groove.
 //!   Because the same fluxes make the discrete balances, Σ supply − Σ leakage = the rate of
 //!   change of the film content, to round-off (0 at steady state).
+//! * Recirculated flow: the θ-flux across the leading edge of each groove (every non-end row),
+//!   the film oil that arrives back at the feed (the heat balance's Q_r).
 //! * Film content Σ V h φ over the unknown nodes (m³ at cavitation density): its rate of change
 //!   closes the balance supply − leakage of a time step.
 //! * Shear (velocity profile u(y) = (1/2μ) p_x (y² − y h) + U (1 − y/h), journal at y = 0):
@@ -153,6 +155,32 @@ pub(crate) fn film_solution(
         }
     }
 
+    // Recirculated flow: the θ-flux across each groove's leading edge, every non-end row.
+    let mut recirculated = 0.0;
+    for g in 0..params.grooves.len() {
+        let in_groove =
+            |i: usize| (0..nz).any(|j| grid.kind[i * nz + j] == NodeKind::Groove(g as u16));
+        for i in 0..nt {
+            if !in_groove(i) {
+                continue;
+            }
+            // flux_theta[k] runs from column i to column i + 1.
+            let (upstream, face, sign) = if speed >= 0.0 {
+                let iw = (i + nt - 1) % nt;
+                (iw, iw, 1.0)
+            } else {
+                let ie = (i + 1) % nt;
+                (ie, i, -1.0)
+            };
+            if in_groove(upstream) {
+                continue;
+            }
+            for j in 1..nz.saturating_sub(1) {
+                recirculated += sign * core.flux_theta[face * nz + j];
+            }
+        }
+    }
+
     // Friction and dissipation.
     let mut tj = 0.0;
     let mut tb = 0.0;
@@ -212,6 +240,7 @@ pub(crate) fn film_solution(
         side_leakage: leak,
         supply_flow: supply,
         supply_line_flow: line,
+        recirculated_flow: recirculated,
         friction_torque_journal: tj,
         friction_torque_bearing: tb,
         power_loss: power,

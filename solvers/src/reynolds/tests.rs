@@ -665,7 +665,7 @@ fn energy_identity_closes_with_the_grid() {
 /// coefficient α > 0 (Picard) keeps the mass balance exact, carries more load at the same ε
 /// (the film is more viscous where it is pressurised), and the returned film is consistent
 /// with its own viscosity (one more Picard step would change no μ by more than the
-/// tolerance); time steps refuse α > 0.
+/// tolerance); time steps take α > 0 with the same properties.
 #[test]
 fn viscosity_model_field_and_picard() {
     use crate::viscosity::{Temperature, ViscosityModel, Vogel};
@@ -718,16 +718,37 @@ fn viscosity_model_field_and_picard() {
         .fold(0.0, f64::max);
     assert!(worst <= VISCOSITY_PICARD_TOLERANCE * 1.01, "{worst}");
 
-    let state = s.initial_state(eps);
-    let step = s.solve_step(
-        &state,
-        &StepInput {
-            eccentricity_ratio: eps,
-            dt: 1e-4,
-            conditions: conditions(2e5),
-        },
+    // Time steps take α > 0 too (Picard per step): the step's film is consistent with its own
+    // viscosity and carries more load than α = 0.
+    let dt = 1e-4;
+    let target = [0.62, -0.31];
+    let step_with = |solver: &mut ReynoldsSolver| {
+        let state = solver.initial_state(eps);
+        solver
+            .solve_step(
+                &state,
+                &StepInput {
+                    eccentricity_ratio: target,
+                    dt,
+                    conditions: conditions(2e5),
+                },
+            )
+            .unwrap()
+    };
+    let (d, _) = step_with(&mut ReynoldsSolver::new(with_model.clone()).unwrap());
+    let (e, _) = step_with(&mut s);
+    assert!(
+        w(e.film_force) > w(d.film_force),
+        "α > 0 carries more load in a step"
     );
-    assert!(matches!(step, Err(ReynoldsError::Unsupported { .. })));
+    let worst = s
+        .viscosity_pressure
+        .iter()
+        .zip(e.pressure.iter())
+        .map(|(p_used, p)| (alpha * (p - p_used).abs()).exp_m1())
+        .fold(0.0, f64::max);
+    assert!(worst <= VISCOSITY_PICARD_TOLERANCE * 1.01, "step: {worst}");
+    assert!(e.film_force.iter().all(|f| f.is_finite()));
 }
 
 /// Time steps take the temperature-dependent field (α = 0): at one temperature the step equals
@@ -779,4 +800,41 @@ fn viscosity_field_in_time_steps() {
     let cold = step(None, vogel.viscosity(40.0));
     let hot = step(None, vogel.viscosity(80.0));
     assert!(hot < rise && rise < cold, "{hot} < {rise} < {cold}");
+}
+
+/// The recirculated flow (the heat balance's Q_r) of a concentric bearing whose groove is fed
+/// at the ambient pressure (above the cavitation pressure, so that the groove is not cut off):
+/// the pressure is ambient everywhere, so the flow arriving at the
+/// groove is the pure Couette flow U c L / 2 over the whole width; reversing the surface
+/// motion moves the leading edge to the groove's other side and gives the same flow.
+/// Eccentric and fed, it is positive and below the Couette flow of the largest gap.
+#[test]
+fn recirculated_flow_is_the_couette_flow_arriving_at_the_groove() {
+    let mut p = grooved(LinearSolver::AdiKrylov);
+    p.cavitation_pressure = -1e5;
+    let (r, l, c) = (p.radius, p.length, p.clearance);
+    // Flows are mass flows over the cavitation density: at ambient pressure the oil is
+    // compressed by φ = 1 + (p_amb − p_cav)/β.
+    let density = 1.0 + (p.ambient_pressure - p.cavitation_pressure) / p.bulk_modulus;
+    let mut s = ReynoldsSolver::new(p).unwrap();
+    for omega in [300.0, -300.0] {
+        let cond = OperatingConditions {
+            journal_speed: omega,
+            ..conditions(0.0)
+        };
+        let sol = s.solve_steady([1e-9, 0.0], &cond).unwrap();
+        let couette = f64::abs(omega) * r * c * l / 2.0 * density;
+        assert!(
+            (sol.recirculated_flow / couette - 1.0).abs() < 1e-8,
+            "ω {omega}: {} vs {couette}",
+            sol.recirculated_flow
+        );
+    }
+    let sol = s.solve_steady([0.6, -0.3], &conditions(2e5)).unwrap();
+    let largest = 300.0 * r * c * 1.6 * l / 2.0;
+    assert!(
+        sol.recirculated_flow > 0.0 && sol.recirculated_flow < largest,
+        "{} vs {largest}",
+        sol.recirculated_flow
+    );
 }
