@@ -19,7 +19,10 @@
 //! time   ≈ steps · 6 ms · (n / 3720)^2 (rigorous Reynolds film; the measured exponent is
 //!          1.6–2.0) + steps · 20 µs (short-bearing film) + samples · cycles · 20 µs (mobility)
 //!          + 10 s (the finite-length mobility map),
-//! where steps = steps per cycle × (max cycles + 1 run-in). Memory is estimated within a factor
+//! where steps = steps per cycle × (max cycles + 1 run-in); with a heat balance
+//! (`[lubricant.heat_balance]`) the rigorous time × 3 and the mobility orbits × 5 (solves a
+//! balance typically takes: 2–3 rigorous from the mobility method's start, 3–5 mobility; the
+//! map is built once). Memory is estimated within a factor
 //! of about 1.5; time within a factor of about 5 (it depends on the load and the machine), which
 //! is enough to catch a case that would take days or a terabyte before it starts.
 
@@ -114,6 +117,12 @@ pub fn estimate(case: &Case) -> Estimate {
     let steps_per_cycle = case.solver.time_steps_per_cycle as f64;
     let cycles = case.solver.max_cycles as f64 + 1.0;
     let samples = case.output.samples_per_cycle as f64;
+    // Solves per method of a heat balance (module docs).
+    let (rigorous_solves, mobility_solves) = if case.heat_balance.is_some() {
+        (3.0, 5.0)
+    } else {
+        (1.0, 1.0)
+    };
     let mut memory = 20e6;
     let mut seconds = 0.0;
     if case.methods.rigorous {
@@ -122,15 +131,18 @@ pub fn estimate(case: &Case) -> Estimate {
             RigorousFilm::Reynolds => {
                 let snapshots = case.output.field_snapshots as f64;
                 memory += nodes * (1e3 + 32.0 * snapshots);
-                seconds += steps_per_cycle * cycles * 6e-3 * (nodes / 3720.0).powi(2);
+                seconds +=
+                    rigorous_solves * steps_per_cycle * cycles * 6e-3 * (nodes / 3720.0).powi(2);
             }
-            RigorousFilm::ShortBearing => seconds += steps_per_cycle * cycles * 20e-6,
+            RigorousFilm::ShortBearing => {
+                seconds += rigorous_solves * steps_per_cycle * cycles * 20e-6
+            }
         }
     }
     if case.methods.mobility {
         memory += 400.0 * samples;
         // The mobility method runs up to 5 × max cycles (at least 10).
-        seconds += samples * (5.0 * case.solver.max_cycles.max(2) as f64) * 20e-6;
+        seconds += mobility_solves * samples * (5.0 * case.solver.max_cycles.max(2) as f64) * 20e-6;
         if case.solver.mobility_model == MobilityModelChoice::Map {
             seconds += 10.0;
         }
@@ -159,6 +171,9 @@ fn cost_drivers(case: &Case) -> String {
             "{} mobility samples per cycle",
             case.output.samples_per_cycle
         ));
+    }
+    if case.heat_balance.is_some() {
+        parts.push("a heat balance (about 3 rigorous and 5 mobility solves)".into());
     }
     parts.join(", ")
 }

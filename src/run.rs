@@ -19,8 +19,8 @@ use jbearing_solvers::mobility::{
 };
 
 use jbearing_solvers::inverse::{
-    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, InverseWarning,
-    ReynoldsFilm, ShortBearingFilm, ShortBearingParams, solve_inverse,
+    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, InverseStart,
+    InverseWarning, ReynoldsFilm, ShortBearingFilm, ShortBearingParams, solve_inverse_from,
 };
 use jbearing_solvers::load::LoadHistory;
 use jbearing_solvers::reynolds::{GridParams, Groove as ReynoldsGroove, ReynoldsParams};
@@ -107,6 +107,16 @@ pub enum RunError {
         /// The solver's error.
         message: String,
     },
+    /// The heat balance of a method did not close (or a solve inside it failed).
+    #[error("case '{case}': {method} method: {message}")]
+    HeatBalance {
+        /// Case name.
+        case: String,
+        /// Which method.
+        method: Method,
+        /// The balance's error and its sources.
+        message: String,
+    },
     /// Every method the case asked for failed.
     #[error("case '{case}': every method failed: {}", messages.join("; "))]
     AllMethodsFailed {
@@ -160,6 +170,26 @@ pub struct CaseOutcome {
 ///        ──► solve_inverse(InverseParams from [solver]) ──► inverse_result ──► MethodResult
 /// ```
 pub fn run_rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodResult, RunError> {
+    run_rigorous_from(case, observer, None).map(|(result, _)| result)
+}
+
+/// Where a rigorous solve ended, to start the next solve of the same case from (a heat
+/// balance's next viscosity): the journal and film state at the end of the last cycle.
+#[derive(Debug, Clone)]
+pub enum RigorousStart {
+    /// The Reynolds (JFO) film's.
+    Reynolds(Box<InverseStart<jbearing_solvers::reynolds::FilmState>>),
+    /// The short-bearing film's.
+    ShortBearing(InverseStart<jbearing_solvers::inverse::ShortBearingState>),
+}
+
+/// [`run_rigorous`] started from where an earlier solve of the case ended (`start`, skipping
+/// the run-in; a start of the other film model is ignored), returning where this one ended.
+pub fn run_rigorous_from(
+    case: &Case,
+    observer: &dyn RunObserver,
+    start: Option<&RigorousStart>,
+) -> Result<(MethodResult, RigorousStart), RunError> {
     let params = inverse_params(case);
     let history = CaseHistory::new(case);
     let mut adapter = InverseAdapter::new(&case.name, observer);
@@ -167,15 +197,21 @@ pub fn run_rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
         case: case.name.clone(),
         message,
     };
-    let (solution, description) = match case.solver.rigorous_film {
+    let (solution, end, description) = match case.solver.rigorous_film {
         RigorousFilm::Reynolds => {
             observer.method_started(&case.name, Method::Rigorous);
             let mut film = ReynoldsFilm::new(reynolds_params(case))
                 .map_err(|e| fail(format!("Reynolds film: {e}")))?;
-            let solution = solve_inverse(&params, &history, &mut film, &mut adapter)
-                .map_err(|e| fail(e.to_string()))?;
+            let from = match start {
+                Some(RigorousStart::Reynolds(s)) => Some(InverseStart::clone(s)),
+                _ => None,
+            };
+            let (solution, end) =
+                solve_inverse_from(&params, &history, &mut film, &mut adapter, from)
+                    .map_err(|e| fail(e.to_string()))?;
             (
                 solution,
+                RigorousStart::Reynolds(Box::new(end)),
                 "inverse solver (Newton on eccentricity per time step) with the mass-conserving \
                  universal Reynolds (Elrod-Vijayaraghavan, JFO) film",
             )
@@ -190,17 +226,23 @@ pub fn run_rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
                 scheme: case.solver.time_scheme,
             })
             .map_err(|e| fail(e.to_string()))?;
-            let solution = solve_inverse(&params, &history, &mut film, &mut adapter)
-                .map_err(|e| fail(e.to_string()))?;
+            let from = match start {
+                Some(RigorousStart::ShortBearing(s)) => Some(s.clone()),
+                _ => None,
+            };
+            let (solution, end) =
+                solve_inverse_from(&params, &history, &mut film, &mut adapter, from)
+                    .map_err(|e| fail(e.to_string()))?;
             (
                 solution,
+                RigorousStart::ShortBearing(end),
                 "inverse solver with the analytic short-bearing film (Gumbel half film, moving \
                  journal) - NOT the mass-conserving Reynolds film",
             )
         }
     };
     observer.method_done(&case.name, Method::Rigorous);
-    Ok(inverse_result(case, &solution, description))
+    Ok((inverse_result(case, &solution, description), end))
 }
 
 /// Key of the report parameter that says why the rigorous method is missing (it failed).
@@ -484,6 +526,13 @@ pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> Me
             "m3 s-1",
             col(&|s| s.supply_flow.iter().sum()),
         ));
+        series.push(Series::new(
+            names::RECIRCULATED_FLOW,
+            "film oil arriving at the feed grooves (circumferential flow across their leading \
+             edges)",
+            "m3 s-1",
+            col(&|s| s.recirculated_flow),
+        ));
     }
     let info = &sol.info;
     MethodResult {
@@ -606,6 +655,71 @@ fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> 
             .index_axis_mut(ndarray::Axis(0), i)
             .assign(&s.fields.film_fraction);
     }
+    let mut fields = vec![
+        Field {
+            name: names::PRESSURE.into(),
+            long_name: "film pressure, gauge".into(),
+            units: "Pa".into(),
+            values: pressure.clone(),
+        },
+        Field {
+            name: names::FILM_THICKNESS.into(),
+            long_name: "film thickness".into(),
+            units: "m".into(),
+            values: thickness,
+        },
+        Field {
+            name: names::FILM_CONTENT.into(),
+            long_name: "film content (density ratio / film fraction)".into(),
+            units: "1".into(),
+            values: content,
+        },
+    ];
+    if let Some(model) = &case.viscosity_model {
+        // The film's temperature and viscosity as the Reynolds solver evaluates them per node
+        // (reynolds `prepare`): T averaged over the node's cell, from the first groove's centre
+        // (else h_max) in the direction of the surface motion; μ = μ₀(T) exp(α (p − p_cav)).
+        let history = CaseHistory::new(case);
+        let d_theta = std::f64::consts::TAU / nt as f64;
+        let mut temperature = Array3::zeros((k, nt, nz));
+        let mut viscosity = Array3::zeros((k, nt, nz));
+        for (i, s) in snaps.iter().enumerate() {
+            let t = grid_time[place(s.step_index)];
+            let eps = sol.steps.get(s.step_index)?.eccentricity_ratio;
+            let supply = case
+                .grooves
+                .first()
+                .map_or((-eps[1]).atan2(-eps[0]), |g| g.center_angle);
+            let sign = if history.journal_speed(t) - history.bearing_speed(t) < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            for it in 0..nt {
+                let th = d_theta * it as f64;
+                let temp = model
+                    .temperature
+                    .cell_average(th, 0.5 * d_theta, supply, sign);
+                for jz in 0..nz {
+                    temperature[[i, it, jz]] = temp;
+                    let p = pressure[[i, it, jz]] - case.cavitation_pressure;
+                    viscosity[[i, it, jz]] = model.at_cell(th, 0.5 * d_theta, supply, sign, p);
+                }
+            }
+        }
+        fields.push(Field {
+            name: names::TEMPERATURE.into(),
+            long_name: "film temperature (the case's temperature profile)".into(),
+            units: "degC".into(),
+            values: temperature,
+        });
+        fields.push(Field {
+            name: names::VISCOSITY.into(),
+            long_name: "film viscosity mu0(T) exp(alpha (p - p_cav))".into(),
+            units: "Pa s".into(),
+            values: viscosity,
+        });
+    }
     Some(FieldSnapshots {
         time: snaps
             .iter()
@@ -621,26 +735,7 @@ fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> 
         z: (0..nz)
             .map(|j| -0.5 * case.length + case.length * j as f64 / (nz - 1) as f64)
             .collect(),
-        fields: vec![
-            Field {
-                name: names::PRESSURE.into(),
-                long_name: "film pressure, gauge".into(),
-                units: "Pa".into(),
-                values: pressure,
-            },
-            Field {
-                name: names::FILM_THICKNESS.into(),
-                long_name: "film thickness".into(),
-                units: "m".into(),
-                values: thickness,
-            },
-            Field {
-                name: names::FILM_CONTENT.into(),
-                long_name: "film content (density ratio / film fraction)".into(),
-                units: "1".into(),
-                values: content,
-            },
-        ],
+        fields,
     })
 }
 
@@ -717,28 +812,15 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
         MobilityModelChoice::Map => {
             // Finite-length mobility (design.md §6, Goenka's construction): pure-squeeze
             // solutions of our own Reynolds-condition film over (ε, load angle) for this L/D.
-            let film = ReynoldsSqueezeFilm::new(SqueezeFilmParams::new(ld)).map_err(|e| {
-                RunError::MobilityMap {
-                    case: case.name.clone(),
-                    message: e.to_string(),
-                }
-            })?;
-            let map = MobilityMap::build(
-                &film,
-                &MobilityMapParams {
-                    eccentricity_nodes: 21,
-                    angle_nodes: 19,
-                    max_eccentricity: 0.97,
-                },
-            )
-            .map_err(|e| RunError::MobilityMap {
+            let map = mobility_map(ld).map_err(|message| RunError::MobilityMap {
                 case: case.name.clone(),
-                message: e.to_string(),
+                message,
             })?;
-            check_model(&map, ld);
+            let map: &MobilityMap = &map;
+            check_model(map, ld);
             params.eccentricity_limit = params.eccentricity_limit.min(map.max_eccentricity());
             (
-                solve_orbit(&params, &map, &load).map_err(err)?,
+                solve_orbit(&params, map, &load).map_err(err)?,
                 "finite-length mobility map: pure-squeeze Reynolds-condition film of this L/D \
                  (squeeze_film), 21 x 19 nodes up to eps = 0.97",
             )
@@ -752,6 +834,40 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
     );
     observer.method_done(&case.name, Method::Mobility);
     Ok(mobility_result(case, &orbit, model_name, &bearing))
+}
+
+/// The finite-length mobility map of `ld` (21 × 19 nodes up to ε = 0.97), built once per
+/// process and shared: it depends on L/D alone (the map is dimensionless), and a heat balance
+/// or a batch of cases of one bearing asks for it many times.
+fn mobility_map(ld: f64) -> Result<std::sync::Arc<MobilityMap>, String> {
+    use std::collections::HashMap;
+    use std::sync::{Arc, Mutex, OnceLock};
+    type Cache = Mutex<HashMap<u64, Arc<OnceLock<Result<Arc<MobilityMap>, String>>>>>;
+    static CACHE: OnceLock<Cache> = OnceLock::new();
+    // One cell per L/D: the first caller builds it, concurrent callers of the same L/D wait
+    // for that build instead of repeating it; other L/D values build in parallel.
+    let cell = CACHE
+        .get_or_init(Default::default)
+        .lock()
+        .expect("mobility map cache poisoned")
+        .entry(ld.to_bits())
+        .or_default()
+        .clone();
+    cell.get_or_init(|| {
+        let film =
+            ReynoldsSqueezeFilm::new(SqueezeFilmParams::new(ld)).map_err(|e| e.to_string())?;
+        MobilityMap::build(
+            &film,
+            &MobilityMapParams {
+                eccentricity_nodes: 21,
+                angle_nodes: 19,
+                max_eccentricity: 0.97,
+            },
+        )
+        .map(Arc::new)
+        .map_err(|e| e.to_string())
+    })
+    .clone()
 }
 
 fn check_model(m: &dyn MobilityModel, ld: f64) {
@@ -949,8 +1065,163 @@ pub fn summary_rows(methods: &[MethodResult]) -> Vec<SummaryRow> {
     ]
     .into_iter()
     .map(|(s, how, n, l)| SummaryRow::from_series(methods, s, how, n, l))
+    .chain(
+        [
+            (
+                heat::EFFECTIVE_TEMPERATURE,
+                "degC",
+                "effective oil temperature T_eff of the heat balance",
+            ),
+            (
+                heat::EFFECTIVE_VISCOSITY,
+                "Pa s",
+                "effective viscosity mu(T_eff) the film was solved with",
+            ),
+            (
+                heat::OUTLET_TEMPERATURE,
+                "degC",
+                "oil outlet temperature T_out of the heat balance (side leakage)",
+            ),
+        ]
+        .into_iter()
+        .map(|(key, units, long)| SummaryRow::from_info(methods, key, units, key, long)),
+    )
     .filter(|r| r.rigorous.is_some() || r.mobility.is_some())
     .collect()
+}
+
+/// The heat balance of a case with `[lubricant.heat_balance]` around one method's solver.
+///
+/// ```text
+///   T ──► case.at_film_temperature(T) ──► method ──► MethodResult ──► cycle means
+///   ▲                                                  P̄ (power_loss), Q_s (side_leakage),
+///   └──── solve_heat_balance (safeguarded secant) ◄─── Q_r (recirculated_flow; 0 if absent)
+/// ```
+///
+/// The rigorous method starts from the mobility method's T_eff (cheap), so that it typically
+/// needs two to four rigorous solves, each after the first started from the orbit and film
+/// where the previous one ended; the converged temperature does not depend on the start (it
+/// is the root within the tolerance).
+pub mod heat {
+    use super::*;
+    use jbearing_solvers::heat_balance::{HeatBalanceInfo, HeatFlows, solve_heat_balance};
+
+    /// Solver-info key: T_eff (°C).
+    pub const EFFECTIVE_TEMPERATURE: &str = "effective_temperature";
+    /// Solver-info key: μ(T_eff) (Pa·s).
+    pub const EFFECTIVE_VISCOSITY: &str = "effective_viscosity";
+    /// Solver-info key: T_out (°C).
+    pub const OUTLET_TEMPERATURE: &str = "outlet_temperature";
+
+    /// The cycle-mean flows of a method's result.
+    pub fn flows(result: &MethodResult) -> HeatFlows {
+        let mean = |name| result.reduce(name, Reduction::Mean);
+        HeatFlows {
+            power_loss: mean(names::POWER_LOSS).unwrap_or(f64::NAN),
+            side_leakage: mean(names::SIDE_LEAKAGE).unwrap_or(f64::NAN),
+            recirculated_flow: mean(names::RECIRCULATED_FLOW).unwrap_or(0.0),
+        }
+    }
+
+    /// Run `solve` on the case, through the heat balance when the case has one.
+    pub fn with_balance(
+        case: &Case,
+        observer: &dyn RunObserver,
+        method: Method,
+        start: Option<(f64, Option<f64>)>,
+        mut solve: impl FnMut(&Case, &dyn RunObserver) -> Result<MethodResult, RunError>,
+    ) -> Result<(MethodResult, Option<HeatBalanceInfo>), RunError> {
+        let Some(h) = &case.heat_balance else {
+            return solve(case, observer).map(|r| (r, None));
+        };
+        let (guess, slope) = start.unwrap_or((h.params.supply_temperature + 10.0, None));
+        let (mut result, info) = solve_heat_balance(&h.params, guess, slope, |t| {
+            let trial = case.at_film_temperature(t);
+            solve(&trial, observer).map(|r| {
+                let f = flows(&r);
+                (r, f)
+            })
+        })
+        .map_err(|e| RunError::HeatBalance {
+            case: case.name.clone(),
+            method,
+            message: error_chain(&e),
+        })?;
+        let t = info.effective_temperature;
+        let history = info
+            .iterates
+            .iter()
+            .map(|i| format!("{:.3}->{:.3}", i.temperature, i.balance.effective))
+            .collect::<Vec<_>>()
+            .join(", ");
+        result.solver_info.extend([
+            (EFFECTIVE_TEMPERATURE.into(), ParameterValue::Number(t)),
+            (
+                EFFECTIVE_VISCOSITY.into(),
+                ParameterValue::Number(h.vogel.viscosity(t)),
+            ),
+            (
+                OUTLET_TEMPERATURE.into(),
+                ParameterValue::Number(info.balance.outlet),
+            ),
+            (
+                "film_inlet_temperature".into(),
+                ParameterValue::Number(info.balance.film_inlet),
+            ),
+            (
+                "heat_balance_iterations".into(),
+                ParameterValue::Integer(info.iterates.len() as i64),
+            ),
+            (
+                "heat_balance_residual".into(),
+                ParameterValue::Number(info.residual),
+            ),
+            (
+                "heat_balance_history".into(),
+                ParameterValue::Text(format!(
+                    "trial T_eff -> balance T_eff (degC) per solve: {history}"
+                )),
+            ),
+        ]);
+        Ok((result, Some(info)))
+    }
+
+    /// The error and its sources, joined by ": ".
+    pub fn error_chain(e: &dyn std::error::Error) -> String {
+        let mut s = e.to_string();
+        let mut src = e.source();
+        while let Some(inner) = src {
+            s.push_str(": ");
+            s.push_str(&inner.to_string());
+            src = inner.source();
+        }
+        s
+    }
+
+    /// The rigorous method with its heat balance, started from the mobility method's.
+    pub fn rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodResult, RunError> {
+        // Only the mobility method's T_eff: its slope does not carry over (on a starved
+        // bearing the two balances differ by tens of kelvin, and a foreign slope overshoots).
+        let start = case.heat_balance.as_ref().and_then(|_| {
+            let (_, info) =
+                with_balance(case, &Quiet, Method::Mobility, None, run_mobility).ok()?;
+            Some((info?.effective_temperature, None))
+        });
+        // Each solve after the first starts from where the previous one ended (no run-in, and
+        // the orbit of a nearby viscosity is close to periodic already).
+        let mut warm: Option<RigorousStart> = None;
+        let solve = |trial: &Case, obs: &dyn RunObserver| {
+            let (result, end) = run_rigorous_from(trial, obs, warm.as_ref())?;
+            warm = Some(end);
+            Ok(result)
+        };
+        with_balance(case, observer, Method::Rigorous, start, solve).map(|(r, _)| r)
+    }
+
+    /// The mobility method with its heat balance.
+    pub fn mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodResult, RunError> {
+        with_balance(case, observer, Method::Mobility, None, run_mobility).map(|(r, _)| r)
+    }
 }
 
 /// Solve the case with the methods it asks for and build its report (nothing is written).
@@ -959,7 +1230,7 @@ pub fn summary_rows(methods: &[MethodResult]) -> Vec<SummaryRow> {
 /// [`RIGOROUS_STATUS`] / [`MOBILITY_STATUS`] parameter ("failed: …") in the report, and the
 /// case fails only when every method it asked for failed.
 pub fn solve_case(case: &Case, observer: &dyn RunObserver) -> Result<CaseReport, RunError> {
-    solve_case_with(case, observer, run_rigorous, run_mobility)
+    solve_case_with(case, observer, heat::rigorous, heat::mobility)
 }
 
 /// A method's solver, as [`solve_case_with`] calls it.

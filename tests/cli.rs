@@ -36,7 +36,7 @@ fn text(b: &[u8]) -> String {
 }
 
 /// One bad case per kind the application must reject with a precise message.
-const KINDS: [&str; 18] = [
+const KINDS: [&str; 21] = [
     "syntax_error",
     "unknown_key",
     "missing_key",
@@ -55,6 +55,9 @@ const KINDS: [&str; 18] = [
     "no_supply",
     "vogel_and_viscosity",
     "vogel_without_temperature",
+    "unknown_oil",
+    "heat_share_out_of_range",
+    "temperature_and_heat_balance",
 ];
 
 #[test]
@@ -523,7 +526,12 @@ fn case_maps_onto_the_reynolds_solver_parameters() {
         (p.radius, p.length, p.clearance),
         (0.01445, 0.02235, 2.54e-5)
     );
-    assert_eq!((p.viscosity, p.bulk_modulus), (0.02, 1.5e9));
+    // ISO VG 100 at the supply temperature (60 °C) until the heat balance moves it.
+    let vg100 = jbearing_solvers::viscosity::IsoViscosityGrade::Vg100.vogel();
+    assert_eq!(
+        (p.viscosity, p.bulk_modulus),
+        (vg100.viscosity(60.0), 1.5e9)
+    );
     // The feed history reaches the film per groove, from the drilling table: open near TDC,
     // cut off (0 Pa = p_cav) at mid-stroke.
     use jbearing_solvers::load::LoadHistory;
@@ -597,16 +605,18 @@ fn sizes_are_checked_against_the_budget_before_the_solve() {
         (
             &huge,
             "would need about 22 TB of memory (grid 100000 × 100000, 36 field snapshots, 180 \
-             time steps per cycle × up to 6 cycles, 360 mobility samples per cycle), above the \
-             limit of 8.6 GB: reduce it, or raise the limit with --max-memory-gb",
+             time steps per cycle × up to 6 cycles, 360 mobility samples per cycle, a heat \
+             balance (about 3 rigorous and 5 mobility solves)), above the limit of 8.6 GB: \
+             reduce it, or raise the limit with --max-memory-gb",
         ),
         (&steps, "would need about 1.0 TB of memory"),
         (&samples, "would need about 800 GB of memory"),
         (
             &big,
-            "would take about 6 days (grid 2000 × 500, 36 field snapshots, 180 time steps per \
-             cycle × up to 6 cycles, 360 mobility samples per cycle), above the limit of 24.0 h: \
-             reduce it, or raise the limit with --max-hours",
+            "would take about 19 days (grid 2000 × 500, 36 field snapshots, 180 time steps per \
+             cycle × up to 6 cycles, 360 mobility samples per cycle, a heat balance (about 3 \
+             rigorous and 5 mobility solves)), above the limit of 24.0 h: reduce it, or raise the \
+             limit with --max-hours",
         ),
     ];
     for (case, message) in expect {
@@ -634,7 +644,7 @@ fn sizes_are_checked_against_the_budget_before_the_solve() {
         )) && stderr.contains("is above 1.1 GB"),
         "{stderr}"
     );
-    assert!(stderr.contains("estimated time 6 days"), "{stderr}");
+    assert!(stderr.contains("estimated time 19 days"), "{stderr}");
 }
 
 /// Implausible but valid inputs pass with a warning that names the file, line and key
@@ -883,4 +893,147 @@ fn check_finds_duplicate_names_and_an_unusable_output_directory() {
         )),
         "{stderr}"
     );
+}
+
+/// A small grooved bearing under a rotating load (36 × 9 film, 10° steps), with the
+/// `[lubricant]` body `lubricant` and the methods `methods`.
+fn thermal_case_text(name: &str, lubricant: &str, methods: &str) -> String {
+    format!(
+        r#"version = 1
+name = "{name}"
+
+[bearing]
+radius_m = 0.025
+length_m = 0.02
+radial_clearance_m = 4e-5
+
+[[grooves]]
+center_angle_deg = 90.0
+circumferential_length_m = 0.006
+axial_width_m = 0.006
+
+{lubricant}
+
+[operation]
+cycle_deg = 360.0
+crank_speed_rpm = 1800.0
+
+[load]
+crank_angle_deg = [0.0, 90.0, 180.0, 270.0]
+x_n = [-2000.0, -1500.0, -1000.0, -1500.0]
+y_n = [0.0, 500.0, 0.0, -500.0]
+
+[feed]
+pressure_pa = 2.0e5
+
+[grid]
+n_theta = 36
+n_z = 9
+
+[solver]
+time_steps_per_cycle = 36
+max_cycles = 8
+
+[output]
+field_snapshots = 4
+plots = false
+
+[methods]
+{methods}
+"#
+    )
+}
+
+/// `[lubricant.temperature]` with a rise: the rigorous group's fields carry the film
+/// temperature (°C) between T_in and T_out, and the viscosity μ₀(T) exp(α (p − p_cav)) of the
+/// oil, node by node.
+#[test]
+fn temperature_and_viscosity_fields_are_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("thermal_fields.toml");
+    std::fs::write(
+        &case,
+        thermal_case_text(
+            "thermal_fields",
+            "[lubricant]\noil = \"ISO VG 46\"\npressure_viscosity_coefficient_per_pa = 1e-8\n\n\
+             [lubricant.temperature]\ninlet_c = 50.0\noutlet_c = 70.0\n",
+            "rigorous = true\nmobility = false",
+        ),
+    )
+    .unwrap();
+    let out = run_into(&case, dir.path(), &[]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let f = hdf5_metno::File::open(dir.path().join("thermal_fields.h5")).unwrap();
+    let read = |name: &str| -> (Vec<f64>, String) {
+        let d = f.dataset(&format!("rigorous/fields/{name}")).unwrap();
+        let units: hdf5_metno::types::VarLenUnicode =
+            d.attr("units").unwrap().read_scalar().unwrap();
+        (d.read_raw().unwrap(), units.as_str().to_owned())
+    };
+    let (t, t_units) = read("temperature");
+    let (mu, mu_units) = read("viscosity");
+    let (p, _) = read("pressure");
+    assert_eq!((t_units.as_str(), mu_units.as_str()), ("degC", "Pa s"));
+    assert!(t.iter().all(|&x| (50.0..=70.0).contains(&x)), "{t:?}");
+    assert!(t.iter().any(|&x| x < 52.0) && t.iter().any(|&x| x > 68.0));
+    let vogel = jbearing_solvers::viscosity::IsoViscosityGrade::Vg46.vogel();
+    for ((t, mu), p) in t.iter().zip(&mu).zip(&p) {
+        let want = vogel.viscosity(*t) * (1e-8 * p.max(0.0)).exp();
+        assert!(
+            (mu / want - 1.0).abs() < 1e-12,
+            "μ {mu} vs {want} at T {t}, p {p}"
+        );
+    }
+}
+
+/// `[lubricant.heat_balance]`: each method reports T_eff, μ(T_eff) and T_out in the summary;
+/// the balance closes on the method's own cycle means (the side leakage carries the power
+/// loss away: ρ c_p Q_s (T_out − T_in) = P̄), T_eff lies between T_in and T_out, and μ_eff is
+/// the oil's viscosity at T_eff.
+#[test]
+fn heat_balance_results_are_reported_and_consistent() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("thermal_balance.toml");
+    std::fs::write(
+        &case,
+        thermal_case_text(
+            "thermal_balance",
+            "[lubricant]\noil = \"ISO VG 46\"\n\n[lubricant.heat_balance]\nsupply_temperature_c = 45.0\n",
+            "rigorous = true\nmobility = true",
+        ),
+    )
+    .unwrap();
+    let out = run_into(&case, dir.path(), &[]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let csv = std::fs::read_to_string(dir.path().join("thermal_balance_summary.csv")).unwrap();
+    let row = |name: &str| -> [f64; 2] {
+        let line = csv
+            .lines()
+            .find(|l| l.starts_with(&format!("{name},")))
+            .unwrap_or_else(|| panic!("{name} missing:\n{csv}"));
+        let cells: Vec<&str> = line.split(',').collect();
+        let n = cells.len();
+        // quantity, units, long_name, rigorous, mobility, deviation (long names hold no comma).
+        [cells[n - 3].parse().unwrap(), cells[n - 2].parse().unwrap()]
+    };
+    let (t_eff, mu_eff, t_out) = (
+        row("effective_temperature"),
+        row("effective_viscosity"),
+        row("outlet_temperature"),
+    );
+    let (power, leak) = (row("power_loss_mean"), row("side_leakage_mean"));
+    let vogel = jbearing_solvers::viscosity::IsoViscosityGrade::Vg46.vogel();
+    for m in 0..2 {
+        assert!(
+            45.0 < t_eff[m] && t_eff[m] <= t_out[m],
+            "{m}: {t_eff:?} {t_out:?}"
+        );
+        assert!((mu_eff[m] / vogel.viscosity(t_eff[m]) - 1.0).abs() < 1e-12);
+        let carried = 1.8e6 * leak[m] * (t_out[m] - 45.0);
+        assert!(
+            (carried / power[m] - 1.0).abs() < 1e-9,
+            "{m}: {carried} vs {}",
+            power[m]
+        );
+    }
 }

@@ -18,6 +18,8 @@ pub mod units;
 pub use error::{CaseWarning, WarningKind};
 #[cfg(test)]
 mod csv_tests;
+#[cfg(test)]
+mod lubricant_tests;
 
 /// A valid case text for unit tests: the compressor main bearing's geometry (Yu & Sawicki
 /// Table II) with one groove and a 0.2068 MPa feed, named `name`, with the `[load]` body `load`
@@ -57,9 +59,10 @@ pressure_pa = 2.068e5
 use std::path::{Path, PathBuf};
 
 use jbearing_solvers::closed_form::{ClosedFormError, ClosedFormModel};
+use jbearing_solvers::heat_balance::HeatBalanceParams;
 use jbearing_solvers::mobility::{LoadInterpolation, TabulatedLoad};
 use jbearing_solvers::time_scheme::TimeScheme;
-use jbearing_solvers::viscosity::{Temperature, ViscosityModel, Vogel};
+use jbearing_solvers::viscosity::{IsoViscosityGrade, Temperature, ViscosityModel, Vogel};
 
 pub use self::error::{CaseError, Locator};
 use self::schema::*;
@@ -198,6 +201,17 @@ pub struct OutputOptions {
     pub plots: bool,
 }
 
+/// The heat balance of a case: the oil's Vogel curve and the balance's parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CaseHeatBalance {
+    /// μ₀(T) of the oil.
+    pub vogel: Vogel,
+    /// T_in, ρ c_p, the share to housing and shaft, tolerance.
+    pub params: HeatBalanceParams,
+    /// Barus α (1/Pa) of the rigorous film at T_eff (0: none).
+    pub pressure_coefficient: f64,
+}
+
 /// A validated case in SI units.
 #[derive(Debug, Clone)]
 pub struct Case {
@@ -223,8 +237,13 @@ pub struct Case {
     /// `viscosity_model` is given (what the mobility method and the closed forms use).
     pub viscosity: f64,
     /// Temperature-dependent viscosity of the rigorous film (`[lubricant.vogel]`,
-    /// `[lubricant.temperature]`), α = 0.
+    /// `[lubricant.temperature]`, `pressure_viscosity_coefficient_per_pa`).
     pub viscosity_model: Option<ViscosityModel>,
+    /// The named oil (`lubricant.oil`), if one was given.
+    pub oil: Option<String>,
+    /// The effective-temperature heat balance (`[lubricant.heat_balance]`): each method
+    /// iterates its film at μ(T_eff) until the balance closes ([`Case::at_film_temperature`]).
+    pub heat_balance: Option<CaseHeatBalance>,
     /// Bulk modulus β (Pa).
     pub bulk_modulus: f64,
     /// Cavitation pressure, gauge (Pa).
@@ -296,6 +315,22 @@ impl Case {
         deg_to_rad(self.cycle_deg) / self.crank_speed
     }
 
+    /// The case with its film at the uniform temperature `temperature` (°C): viscosity μ₀(T)
+    /// of the heat balance's oil, no temperature field. One trial of the heat balance; the case
+    /// itself when it has none.
+    pub fn at_film_temperature(&self, temperature: f64) -> Case {
+        let mut case = self.clone();
+        if let Some(h) = &self.heat_balance {
+            case.viscosity = h.vogel.viscosity(temperature);
+            case.viscosity_model = (h.pressure_coefficient > 0.0).then_some(ViscosityModel {
+                vogel: h.vogel,
+                temperature: Temperature::Constant(temperature),
+                pressure_coefficient: h.pressure_coefficient,
+            });
+        }
+        case
+    }
+
     /// The load table as the solvers take it.
     pub fn load(&self) -> TabulatedLoad {
         TabulatedLoad::new(
@@ -323,7 +358,9 @@ impl Case {
                 "viscosity",
                 self.viscosity,
                 "Pa s",
-                "dynamic viscosity (with a Vogel law: at the mean film temperature)",
+                "dynamic viscosity (with a Vogel law: at the mean film temperature; with a heat \
+                 balance: at the supply temperature, each method reporting its own \
+                 effective_viscosity)",
             ),
             Parameter::number(
                 "bulk_modulus",
@@ -411,6 +448,54 @@ impl Case {
                 "time discretization of the rigorous film (bdf2, backward_euler, crank_nicolson)",
             ),
         ];
+        if let Some(oil) = &self.oil {
+            p.push(Parameter::text(
+                "oil",
+                oil,
+                "named oil: ISO 3448 grade, Vogel curve from Walther through 40 and 100 degC",
+            ));
+        }
+        if let Some(h) = &self.heat_balance {
+            let hp = &h.params;
+            p.push(Parameter::number(
+                "vogel_a",
+                h.vogel.a,
+                "Pa s",
+                "Vogel viscosity law mu0(T) = a exp(b / (T - c)): a",
+            ));
+            p.push(Parameter::number("vogel_b", h.vogel.b, "K", "Vogel b"));
+            p.push(Parameter::number("vogel_c", h.vogel.c, "degC", "Vogel c"));
+            p.push(Parameter::number(
+                "supply_temperature",
+                hp.supply_temperature,
+                "degC",
+                "oil supply temperature T_in of the heat balance",
+            ));
+            p.push(Parameter::number(
+                "heat_to_housing_and_shaft",
+                hp.heat_to_structure,
+                "1",
+                "share of the power loss conducted away through housing and shaft",
+            ));
+            p.push(Parameter::number(
+                "volumetric_heat_capacity",
+                hp.volumetric_heat_capacity,
+                "J m-3 K-1",
+                "rho c_p of the oil",
+            ));
+            p.push(Parameter::number(
+                "pressure_viscosity_coefficient",
+                h.pressure_coefficient,
+                "Pa-1",
+                "Barus alpha of the rigorous film (the mobility method and closed forms take mu(T_eff))",
+            ));
+            p.push(Parameter::number(
+                "heat_balance_tolerance",
+                hp.tolerance,
+                "K",
+                "tolerance on |T_balance - T_eff|",
+            ));
+        }
         if let Some(m) = &self.viscosity_model {
             p.push(Parameter::number(
                 "vogel_a",
@@ -420,6 +505,13 @@ impl Case {
             ));
             p.push(Parameter::number("vogel_b", m.vogel.b, "K", "Vogel b"));
             p.push(Parameter::number("vogel_c", m.vogel.c, "degC", "Vogel c"));
+            p.push(Parameter::number(
+                "pressure_viscosity_coefficient",
+                m.pressure_coefficient,
+                "Pa-1",
+                "Barus alpha of the rigorous film (the mobility method and closed forms take the \
+                 mean-temperature viscosity)",
+            ));
             match m.temperature {
                 Temperature::Constant(t) => p.push(Parameter::number(
                     "film_temperature",
@@ -893,7 +985,12 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
     }
 
     let l = &raw.lubricant;
-    let (viscosity, viscosity_model) = resolve_viscosity(l, ctx)?;
+    let ResolvedViscosity {
+        viscosity,
+        model: viscosity_model,
+        oil,
+        heat_balance,
+    } = resolve_viscosity(l, ctx)?;
     let bulk_modulus = ctx.positive("lubricant.bulk_modulus_pa", l.bulk_modulus_pa)?;
     let cavitation_pressure =
         ctx.finite("lubricant.cavitation_pressure_pa", l.cavitation_pressure_pa)?;
@@ -1283,6 +1380,8 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         grooves,
         viscosity,
         viscosity_model,
+        oil,
+        heat_balance,
         bulk_modulus,
         cavitation_pressure,
         ambient_pressure,
@@ -1444,38 +1543,163 @@ fn plausibility_warnings(case: &Case, ctx: &Ctx<'_>) -> Vec<CaseWarning> {
     out
 }
 
-/// The constant viscosity, or Vogel's μ₀(T) with the film temperature: the model for the
-/// rigorous film and μ₀ at the mean temperature (T_m, or (T_in + T_out)/2 as seed 003 defines
-/// it) for the methods that take one viscosity.
-fn resolve_viscosity(
-    l: &LubricantSection,
-    ctx: &Ctx<'_>,
-) -> Result<(f64, Option<ViscosityModel>), CaseError> {
-    match (&l.viscosity_pa_s, &l.vogel, &l.temperature) {
-        (Some(_), Some(_), _) => Err(ctx.err(
-            "lubricant.vogel",
-            "give either viscosity_pa_s or [lubricant.vogel] (which sets the viscosity from the \
-             temperature), not both",
-        )),
-        (Some(mu), None, None) => Ok((ctx.positive("lubricant.viscosity_pa_s", *mu)?, None)),
-        (Some(_), None, Some(_)) => Err(ctx.err(
-            "lubricant.temperature",
-            "a film temperature needs [lubricant.vogel] (the viscosity–temperature law)",
-        )),
-        (None, None, _) => Err(ctx.err(
-            "lubricant.viscosity_pa_s",
-            "missing: give viscosity_pa_s, or [lubricant.vogel] with [lubricant.temperature]",
-        )),
-        (None, Some(_), None) => Err(ctx.err(
-            "lubricant.vogel",
-            "[lubricant.vogel] needs [lubricant.temperature] (mean_c, or inlet_c and outlet_c)",
-        )),
-        (None, Some(v), Some(t)) => {
-            let vogel = Vogel {
+/// What `[lubricant]` says about the viscosity, resolved.
+struct ResolvedViscosity {
+    viscosity: f64,
+    model: Option<ViscosityModel>,
+    oil: Option<String>,
+    heat_balance: Option<CaseHeatBalance>,
+}
+
+/// The constant viscosity, or a Vogel law (`[lubricant.vogel]` or a named `oil`) with the film
+/// temperature given (`[lubricant.temperature]`: the model for the rigorous film and μ₀ at the
+/// mean temperature, T_m or (T_in + T_out)/2 as seed 003 defines it, for the methods that take
+/// one viscosity) or found by a heat balance (`[lubricant.heat_balance]`: μ at the supply
+/// temperature until the balance replaces it by μ(T_eff)).
+fn resolve_viscosity(l: &LubricantSection, ctx: &Ctx<'_>) -> Result<ResolvedViscosity, CaseError> {
+    let alpha = l.pressure_viscosity_coefficient_per_pa;
+    if !(alpha >= 0.0 && alpha.is_finite()) {
+        return Err(ctx.err(
+            "lubricant.pressure_viscosity_coefficient_per_pa",
+            format!("must be ≥ 0 and finite (1/Pa; oils: 1e-8 … 3e-8), got {alpha}"),
+        ));
+    }
+    let law = match (&l.viscosity_pa_s, &l.vogel, &l.oil) {
+        (Some(mu), None, None) => {
+            if alpha > 0.0 {
+                return Err(ctx.err(
+                    "lubricant.pressure_viscosity_coefficient_per_pa",
+                    "a pressure-dependent viscosity needs a viscosity–temperature law \
+                     ([lubricant.vogel] or oil) with its temperature",
+                ));
+            }
+            if l.temperature.is_some() || l.heat_balance.is_some() {
+                let key = if l.temperature.is_some() {
+                    "lubricant.temperature"
+                } else {
+                    "lubricant.heat_balance"
+                };
+                return Err(ctx.err(
+                    key,
+                    "a film temperature needs a viscosity–temperature law ([lubricant.vogel] or \
+                     oil), not a constant viscosity_pa_s",
+                ));
+            }
+            return Ok(ResolvedViscosity {
+                viscosity: ctx.positive("lubricant.viscosity_pa_s", *mu)?,
+                model: None,
+                oil: None,
+                heat_balance: None,
+            });
+        }
+        (None, None, None) => {
+            return Err(ctx.err(
+                "lubricant.viscosity_pa_s",
+                "missing: give viscosity_pa_s, or a viscosity–temperature law ([lubricant.vogel] \
+                 or oil) with [lubricant.temperature] or [lubricant.heat_balance]",
+            ));
+        }
+        (None, Some(v), None) => (
+            Vogel {
                 a: ctx.positive("lubricant.vogel.a_pa_s", v.a_pa_s)?,
                 b: ctx.finite("lubricant.vogel.b_c", v.b_c)?,
                 c: ctx.finite("lubricant.vogel.c_c", v.c_c)?,
+            },
+            None,
+        ),
+        (None, None, Some(name)) => {
+            let grade = IsoViscosityGrade::from_name(name).ok_or_else(|| {
+                ctx.err(
+                    "lubricant.oil",
+                    format!(
+                        "unknown oil {name:?}: the named oils are {}",
+                        IsoViscosityGrade::ALL
+                            .iter()
+                            .map(|g| format!("{:?}", g.name()))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                )
+            })?;
+            (grade.vogel(), Some(grade.name()))
+        }
+        _ => {
+            return Err(ctx.err(
+                if l.oil.is_some() {
+                    "lubricant.oil"
+                } else {
+                    "lubricant.vogel"
+                },
+                "give one of viscosity_pa_s, [lubricant.vogel] or oil (each sets the viscosity), \
+                 not several",
+            ));
+        }
+    };
+    let (vogel, oil) = law;
+    let mean_viscosity = |t: f64| {
+        let mu = vogel.viscosity(t);
+        if mu > 0.0 && mu.is_finite() && t > vogel.c {
+            Ok(mu)
+        } else {
+            Err(ctx.err(
+                "lubricant.vogel",
+                format!("gives μ₀({t} °C) = {mu} Pa·s, not a positive finite viscosity"),
+            ))
+        }
+    };
+    match (&l.temperature, &l.heat_balance) {
+        (Some(_), Some(_)) => Err(ctx.err(
+            "lubricant.heat_balance",
+            "give the film temperature ([lubricant.temperature]) or find it by a heat balance \
+             ([lubricant.heat_balance]), not both",
+        )),
+        (None, None) => Err(ctx.err(
+            "lubricant.temperature",
+            "a viscosity–temperature law needs [lubricant.temperature] (mean_c, or inlet_c and \
+             outlet_c) or [lubricant.heat_balance] (supply_temperature_c)",
+        )),
+        (None, Some(h)) => {
+            let params = HeatBalanceParams {
+                supply_temperature: ctx.finite(
+                    "lubricant.heat_balance.supply_temperature_c",
+                    h.supply_temperature_c,
+                )?,
+                volumetric_heat_capacity: ctx.positive(
+                    "lubricant.heat_balance.volumetric_heat_capacity_j_m3_k",
+                    h.volumetric_heat_capacity_j_m3_k,
+                )?,
+                heat_to_structure: h.heat_to_housing_and_shaft,
+                tolerance: ctx.positive("lubricant.heat_balance.tolerance_k", h.tolerance_k)?,
+                max_iterations: h.max_iterations,
             };
+            if !(0.0..1.0).contains(&params.heat_to_structure) {
+                return Err(ctx.err(
+                    "lubricant.heat_balance.heat_to_housing_and_shaft",
+                    format!(
+                        "must lie in [0, 1) (the share of the power loss conducted away), got {}",
+                        params.heat_to_structure
+                    ),
+                ));
+            }
+            if params.max_iterations < 2 {
+                return Err(ctx.err(
+                    "lubricant.heat_balance.max_iterations",
+                    format!("must be at least 2, got {}", params.max_iterations),
+                ));
+            }
+            let viscosity = mean_viscosity(params.supply_temperature)?;
+            Ok(ResolvedViscosity {
+                viscosity,
+                model: None,
+                oil,
+                heat_balance: Some(CaseHeatBalance {
+                    vogel,
+                    params,
+                    pressure_coefficient: alpha,
+                }),
+            })
+        }
+        (Some(t), None) => {
             let (temperature, mean) = match (t.mean_c, t.inlet_c, t.outlet_c) {
                 (Some(m), None, None) => {
                     let m = ctx.finite("lubricant.temperature.mean_c", m)?;
@@ -1510,19 +1734,17 @@ fn resolve_viscosity(
             let model = ViscosityModel {
                 vogel,
                 temperature,
-                pressure_coefficient: 0.0,
+                pressure_coefficient: alpha,
             };
             if let Err(e) = model.validate() {
                 return Err(ctx.err("lubricant.temperature", e.to_string()));
             }
-            let mu = vogel.viscosity(mean);
-            if !(mu > 0.0 && mu.is_finite()) {
-                return Err(ctx.err(
-                    "lubricant.vogel",
-                    format!("gives μ₀({mean} °C) = {mu} Pa·s, not a positive finite viscosity"),
-                ));
-            }
-            Ok((mu, Some(model)))
+            Ok(ResolvedViscosity {
+                viscosity: mean_viscosity(mean)?,
+                model: Some(model),
+                oil,
+                heat_balance: None,
+            })
         }
     }
 }

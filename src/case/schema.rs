@@ -94,8 +94,17 @@ pub struct LubricantSection {
     pub viscosity_pa_s: Option<f64>,
     /// Vogel's μ₀(T) = a exp(b / (T − c)) (seed 003).
     pub vogel: Option<VogelSection>,
-    /// The film temperature for `vogel`.
+    /// Barus pressure–viscosity coefficient α (1/Pa) of the rigorous film, with a Vogel law
+    /// (seed 003: 1e-8 … 2e-8); default 0.
+    #[serde(default)]
+    pub pressure_viscosity_coefficient_per_pa: f64,
+    /// A named oil (ISO VG 32 … 680) whose Vogel curve gives μ(T): instead of `vogel`.
+    pub oil: Option<String>,
+    /// The film temperature for `vogel` / `oil`, given.
     pub temperature: Option<TemperatureSection>,
+    /// The film temperature for `vogel` / `oil`, from a heat balance (instead of
+    /// `temperature`).
+    pub heat_balance: Option<HeatBalanceSection>,
     #[serde(default = "default_bulk_modulus")]
     pub bulk_modulus_pa: f64,
     #[serde(default)]
@@ -124,6 +133,38 @@ pub struct TemperatureSection {
     pub outlet_c: Option<f64>,
     #[serde(default = "default_rise_span_deg")]
     pub rise_span_deg: f64,
+}
+
+/// `[lubricant.heat_balance]`: the effective temperature from the cycle-mean power loss.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HeatBalanceSection {
+    /// Oil supply temperature T_in, °C.
+    pub supply_temperature_c: f64,
+    /// Share χ of the power loss conducted away through housing and shaft (0 … < 1).
+    #[serde(default)]
+    pub heat_to_housing_and_shaft: f64,
+    /// ρ c_p of the oil, J/(m³ K).
+    #[serde(default = "default_volumetric_heat_capacity")]
+    pub volumetric_heat_capacity_j_m3_k: f64,
+    /// Tolerance on |T_bal − T_eff|, K.
+    #[serde(default = "default_heat_balance_tolerance")]
+    pub tolerance_k: f64,
+    /// Solves allowed per method.
+    #[serde(default = "default_heat_balance_iterations")]
+    pub max_iterations: usize,
+}
+
+fn default_volumetric_heat_capacity() -> f64 {
+    jbearing_solvers::heat_balance::DIN_31652_VOLUMETRIC_HEAT_CAPACITY
+}
+
+fn default_heat_balance_tolerance() -> f64 {
+    jbearing_solvers::heat_balance::HeatBalanceParams::default().tolerance
+}
+
+fn default_heat_balance_iterations() -> usize {
+    jbearing_solvers::heat_balance::HeatBalanceParams::default().max_iterations
 }
 
 fn default_rise_span_deg() -> f64 {

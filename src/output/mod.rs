@@ -82,6 +82,9 @@ pub mod names {
     pub const SIDE_LEAKAGE: &str = "side_leakage";
     /// Viscous power loss in the film \[W\].
     pub const POWER_LOSS: &str = "power_loss";
+    /// Film oil arriving back at the feed grooves (the heat balance's recirculated flow)
+    /// \[m³/s\].
+    pub const RECIRCULATED_FLOW: &str = "recirculated_flow";
     /// Cavitated fraction of the film area \[1\].
     pub const CAVITATED_FRACTION: &str = "cavitated_fraction";
 
@@ -89,6 +92,10 @@ pub mod names {
     pub const PRESSURE: &str = "pressure";
     /// Field: film thickness \[m\].
     pub const FILM_THICKNESS: &str = "film_thickness";
+    /// Field: film temperature \[°C\].
+    pub const TEMPERATURE: &str = "temperature";
+    /// Field: film viscosity \[Pa·s\].
+    pub const VISCOSITY: &str = "viscosity";
     /// Field: film content φ (density ratio where full, film fraction where cavitated) \[1\].
     pub const FILM_CONTENT: &str = "film_content";
 }
@@ -367,6 +374,14 @@ impl MethodResult {
         }
     }
 
+    /// The number `key` of the solver info, if present.
+    pub fn info_number(&self, key: &str) -> Option<f64> {
+        self.solver_info.iter().find_map(|(k, v)| match v {
+            ParameterValue::Number(x) if k == key => Some(*x),
+            _ => None,
+        })
+    }
+
     /// The series named `name`, if present.
     pub fn series(&self, name: &str) -> Option<&Series> {
         self.series.iter().find(|s| s.name == name)
@@ -470,6 +485,30 @@ impl SummaryRow {
             name: name.into(),
             long_name: long_name.into(),
             units,
+            rigorous: of(Method::Rigorous),
+            mobility: of(Method::Mobility),
+        }
+    }
+
+    /// A row from the number `key` of each method's solver info (a scalar the method found,
+    /// such as the effective temperature of its heat balance); `None` for methods without it.
+    pub fn from_info(
+        methods: &[MethodResult],
+        key: &str,
+        units: &str,
+        name: &str,
+        long_name: &str,
+    ) -> Self {
+        let of = |m: Method| {
+            methods
+                .iter()
+                .find(|r| r.method == m)
+                .and_then(|r| r.info_number(key))
+        };
+        Self {
+            name: name.into(),
+            long_name: long_name.into(),
+            units: units.into(),
             rigorous: of(Method::Rigorous),
             mobility: of(Method::Mobility),
         }
