@@ -17,6 +17,9 @@
 //!   load tables, synthetic loads, and the [`load::LoadHistory`] trait (W(t), ω_j, ω_b, p_feed).
 //! - [`inverse`]: the inverse dynamic-load problem (load history → journal orbit): Newton on the
 //!   eccentricity per time step, run-in, cycles to a periodic solution, per-step time series.
+//! - [`mechanism`]: the planar slider-crank of Flores et al. 2009 (seed 004) with a lubricated
+//!   rod–slider joint (closed-form or Reynolds film, Lankarani–Nikravesh contact when the film
+//!   breaks down), integrated in minimal coordinates; and its ideal-joint inverse dynamics.
 //! - [`mobility`]: Booker's mobility method (short-bearing closed forms, finite-length mobility
 //!   map, adaptive orbit integration to a periodic cycle, h_min / p_max / flow / power loss).
 //! - [`ritz`]: the Ritz method of seed 001 for the finite bearing with a film on 0 … π.
@@ -34,6 +37,7 @@ pub mod closed_form;
 pub mod heat_balance;
 pub mod inverse;
 pub mod load;
+pub mod mechanism;
 pub mod mobility;
 pub mod reynolds;
 pub mod ritz;
