@@ -544,10 +544,10 @@ fn closed_form_films_against_the_reynolds_film() {
                 n_z: 15,
             };
             films.push(("reynolds 60×15".into(), JointFilm::Reynolds(Box::new(rp))));
+            let mut h_of = std::collections::HashMap::new();
             for (name, film) in films {
                 let mut joint = base.clone();
                 joint.film = film;
-                let is_reynolds = matches!(joint.film, JointFilm::Reynolds(_));
                 let p = MechanismParams::new(
                     SliderCrankParams::flores2009(),
                     RodSliderJoint::Lubricated(joint),
@@ -573,6 +573,7 @@ fn closed_form_films_against_the_reynolds_film() {
                             s.info.max_joint_force,
                             s.info.max_crank_moment
                         );
+                        h_of.insert(name.clone(), h2);
                         // Where the film stays thick (c ≤ 0.2 mm at 400 cP: h_min ≫ 3 µm) the
                         // joint force is the slider's and rod's inertia whatever the film:
                         // within 10 % of the ideal joint's peak. (Thin films bounce the
@@ -584,13 +585,21 @@ fn closed_form_films_against_the_reynolds_film() {
                             );
                         }
                     }
-                    Err(e) => {
-                        println!("| {} | {} | {name} | failed: {e} |", 1e3 * c, 1e3 * mu);
-                        // At 400 cP every film must carry the joint.
-                        assert!(mu < 0.1 || !is_reynolds, "{name} c {c} μ {mu}: {e}");
-                        assert!(mu < 0.1, "{name} c {c} μ {mu}: {e}");
-                    }
+                    // Every film must carry the run through, dry contact included.
+                    Err(e) => panic!("{name} c {c} μ {mu}: {e}"),
                 }
+            }
+            // The full (Sommerfeld) films pull as well as push, the long one without side
+            // leakage, the short one without circumferential pressure flow (at L/D = 2 it
+            // overestimates the pressure): both overestimate what a cavitating finite film
+            // carries, so the Reynolds film lets the journal closer to the wall than either.
+            let re = h_of["reynolds 60×15"];
+            for full in ["long_sommerfeld", "short_sommerfeld"] {
+                assert!(
+                    re < h_of[full],
+                    "c {c} μ {mu}: Reynolds {re} vs {full} {}",
+                    h_of[full]
+                );
             }
         }
     }

@@ -233,6 +233,9 @@ struct JointModel<'a> {
     release_radius: f64,
 }
 
+/// Longest Newton update of ε in one BDF2 iteration (0.05 c).
+const MAX_NEWTON_STEP: f64 = 0.05;
+
 /// A run with more contact events than this is stopped with an error.
 const MAX_CONTACT_EVENTS: usize = 100_000;
 
@@ -591,7 +594,32 @@ fn solve2(j: [[f64; 2]; 2], r: [f64; 2]) -> Option<[f64; 2]> {
     ])
 }
 
-#[allow(clippy::too_many_arguments)]
+/// The journal's history for the BDF2 formulas, and the contact state.
+#[derive(Debug, Clone, Copy)]
+struct History {
+    t: f64,
+    /// ε^n, ε^{n−1}
+    eps: [[f64; 2]; 2],
+    /// ε̇^n, ε̇^{n−1}
+    rate: [[f64; 2]; 2],
+    /// ε̈^n (predictor)
+    acc: [f64; 2],
+    /// Δt of the step that reached t^n (None before the first step: backward Euler).
+    last_dt: Option<f64>,
+    in_contact: bool,
+    impact: f64,
+}
+
+/// Settings of the BDF2 Newton.
+#[derive(Debug, Clone, Copy)]
+struct NewtonSettings {
+    tol: f64,
+    max_iter: usize,
+}
+
+/// Most halvings of a BDF2 step whose Newton fails (a step is split into up to 2⁶ parts).
+const MAX_STEP_SPLITS: usize = 6;
+
 fn solve_bdf2(
     params: &MechanismParams,
     model: &JointModel<'_>,
@@ -607,173 +635,51 @@ fn solve_bdf2(
     let n_steps = params.turns * steps_per_turn;
     let stride = steps_per_turn / params.samples_per_turn;
     let floor = model.joint.contact.min_impact_speed;
+    let newton = NewtonSettings { tol, max_iter };
     let mut out = MechanismSolution::default();
     let mut weights = Vec::new();
     let mut info = MechanismInfo::default();
     let mut events = Vec::new();
-
-    // History: ε^n, ε^{n−1}, ε̇^n, ε̇^{n−1}.
-    let (mut e_n, mut e_nm1) = ([0.0f64; 2], [0.0f64; 2]);
-    let (mut r_n, mut r_nm1) = ([0.0f64; 2], [0.0f64; 2]);
-    let mut a_n = [0.0f64; 2];
-    let mut in_contact = false;
-    let mut impact = floor;
+    let mut hist = History {
+        t: 0.0,
+        eps: [[0.0; 2]; 2],
+        rate: [[0.0; 2]; 2],
+        acc: [0.0; 2],
+        last_dt: None,
+        in_contact: false,
+        impact: floor,
+    };
 
     // Sample at t = 0: the ideal configuration (e = 0, ė = 0), force of the film at rest.
     {
-        let trial = evaluate_bdf2(
-            model, film, 0.0, 1.0, [0.0; 2], [0.0; 2], [0.0; 2], floor, dt, false, &mut info,
-        )?;
-        out.push_sample(
-            mech,
-            &trial.k,
-            trial.acc,
-            trial.force.total,
-            [0.0; 2],
-            [0.0; 2],
-        );
-        weights.push(trial.force.weight);
+        let k = mech.configuration(0.0, [0.0; 2], [0.0; 2])?;
+        let acc = mech.accelerations(&k, [0.0; 2]);
+        out.push_sample(mech, &k, acc, [0.0; 2], [0.0; 2], [0.0; 2]);
+        weights.push(0.0);
     }
 
     for n in 0..n_steps {
         let t1 = (n + 1) as f64 * dt;
-        // BDF2 (backward Euler on the first step): ẏ^{n+1} = (a₀ y^{n+1} − h)/Δt.
-        let (a0, hist_e, hist_r) = if n == 0 {
-            (1.0, e_n, r_n)
-        } else {
-            (
-                1.5,
-                [2.0 * e_n[0] - 0.5 * e_nm1[0], 2.0 * e_n[1] - 0.5 * e_nm1[1]],
-                [2.0 * r_n[0] - 0.5 * r_nm1[0], 2.0 * r_n[1] - 0.5 * r_nm1[1]],
-            )
-        };
-        // Impact velocity: frozen during a contact, the approach speed at t^n otherwise.
-        let step_impact = if in_contact {
-            impact
-        } else {
-            let e = e_n[0].hypot(e_n[1]);
-            if e > 0.0 {
-                (c * (e_n[0] * r_n[0] + e_n[1] * r_n[1]) / e).max(floor)
-            } else {
-                floor
-            }
-        };
-        // Predictor: second-order extrapolation.
-        let mut eps = [
-            e_n[0] + dt * r_n[0] + 0.5 * dt * dt * a_n[0],
-            e_n[1] + dt * r_n[1] + 0.5 * dt * dt * a_n[1],
-        ];
-        // Newton with the Jacobian kept while the updates contract (chord steps) and taken
-        // afresh when they do not; the evaluated iterate is accepted once the next update is
-        // below the tolerance (its film state then belongs to it).
-        let mut jac: Option<[[f64; 2]; 2]> = None;
-        let mut prev_update = f64::INFINITY;
-        let mut last_update = f64::INFINITY;
-        let mut accepted: Option<Trial> = None;
-        for iter in 0..max_iter {
-            let want_jacobian = jac.is_none();
-            let trial = evaluate_bdf2(
-                model,
-                film,
-                t1,
-                a0,
-                hist_e,
-                hist_r,
-                eps,
-                step_impact,
-                dt,
-                want_jacobian,
-                &mut info,
-            )?;
-            info.evaluations += 1;
-            let j = match jac {
-                Some(j) => j,
-                None => {
-                    let j = bdf2_jacobian(
-                        model,
-                        film,
-                        t1,
-                        a0,
-                        hist_e,
-                        hist_r,
-                        eps,
-                        step_impact,
-                        dt,
-                        &trial,
-                    )?;
-                    jac = Some(j);
-                    j
-                }
-            };
-            let Some(d) = solve2(j, trial.residual) else {
-                return Err(MechanismError::NewtonFailed {
-                    time: t1,
-                    crank_angle_deg: model.crank_deg(t1),
-                    update: f64::INFINITY,
-                    iterations: iter,
-                });
-            };
-            last_update = d[0].hypot(d[1]);
-            if last_update <= tol {
-                accepted = Some(trial);
-                break;
-            }
-            if !want_jacobian && last_update > 0.3 * prev_update {
-                jac = None;
-            }
-            prev_update = last_update;
-            eps = [eps[0] - d[0], eps[1] - d[1]];
-        }
-        let Some(trial) = accepted else {
-            return Err(MechanismError::NewtonFailed {
-                time: t1,
-                crank_angle_deg: model.crank_deg(t1),
-                update: last_update,
-                iterations: max_iter,
-            });
-        };
-        // Commit.
-        if let (Film::Reynolds(b), Some(state)) = (&mut *film, trial.film_state.clone()) {
-            b.1 = state;
-        }
-        e_nm1 = e_n;
-        r_nm1 = r_n;
-        e_n = eps;
-        r_n = trial.rate;
-        a_n = trial.eps_acc;
-        info.steps += 1;
-        let r_now = eps[0].hypot(eps[1]) * c;
-        let now_contact = if in_contact {
-            r_now > model.release_radius
-        } else {
-            r_now > model.contact_radius
-        };
-        if now_contact != in_contact {
-            let e = eps[0].hypot(eps[1]);
-            let radial = c * (eps[0] * r_n[0] + eps[1] * r_n[1]) / e;
-            events.push(ContactEvent {
-                time: t1,
-                crank_angle_deg: model.crank_deg(t1),
-                kind: if now_contact {
-                    ContactEventKind::Onset
-                } else {
-                    ContactEventKind::Release
-                },
-                radial_velocity: radial,
-            });
-            if now_contact {
-                impact = step_impact;
-            }
-            in_contact = now_contact;
-        }
+        let trial = advance(
+            model,
+            film,
+            &mut hist,
+            t1,
+            0,
+            newton,
+            &mut info,
+            &mut events,
+        )?;
         if (n + 1) % stride == 0 {
+            let eps = hist.eps[0];
+            let rate = hist.rate[0];
             out.push_sample(
                 mech,
                 &trial.k,
                 trial.acc,
                 trial.force.total,
                 [c * eps[0], c * eps[1]],
-                [c * r_n[0], c * r_n[1]],
+                [c * rate[0], c * rate[1]],
             );
             weights.push(trial.force.weight);
         }
@@ -789,6 +695,237 @@ fn solve_bdf2(
     out.check_finite()?;
     out.finish(Some(c), Some(params.samples_per_turn));
     Ok(out)
+}
+
+/// Advance the history to t1 by one BDF2 step, or — when its Newton fails — by two halves
+/// (recursively, at most [`MAX_STEP_SPLITS`] deep). Returns the trial accepted at t1.
+#[allow(clippy::too_many_arguments)]
+fn advance(
+    model: &JointModel<'_>,
+    film: &mut Film,
+    hist: &mut History,
+    t1: f64,
+    depth: usize,
+    newton: NewtonSettings,
+    info: &mut MechanismInfo,
+    events: &mut Vec<ContactEvent>,
+) -> Result<Trial, MechanismError> {
+    match bdf2_step(model, film, hist, t1, newton, info) {
+        Ok((trial, eps)) => {
+            commit(model, film, hist, t1, eps, &trial, events);
+            info.steps += 1;
+            Ok(trial)
+        }
+        Err(MechanismError::NewtonFailed { .. }) if depth < MAX_STEP_SPLITS => {
+            let mid = 0.5 * (hist.t + t1);
+            advance(model, film, hist, mid, depth + 1, newton, info, events)?;
+            advance(model, film, hist, t1, depth + 1, newton, info, events)
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// Take the accepted step into the history (film state, contact events).
+fn commit(
+    model: &JointModel<'_>,
+    film: &mut Film,
+    hist: &mut History,
+    t1: f64,
+    eps: [f64; 2],
+    trial: &Trial,
+    events: &mut Vec<ContactEvent>,
+) {
+    let c = model.c;
+    if let (Film::Reynolds(b), Some(state)) = (&mut *film, trial.film_state.clone()) {
+        b.1 = state;
+    }
+    let step_impact = step_impact(model, hist);
+    hist.last_dt = Some(t1 - hist.t);
+    hist.t = t1;
+    hist.eps = [eps, hist.eps[0]];
+    hist.rate = [trial.rate, hist.rate[0]];
+    hist.acc = trial.eps_acc;
+    let r_now = eps[0].hypot(eps[1]) * c;
+    let now_contact = if hist.in_contact {
+        r_now > model.release_radius
+    } else {
+        r_now > model.contact_radius
+    };
+    if now_contact != hist.in_contact {
+        let e = eps[0].hypot(eps[1]);
+        let radial = c * (eps[0] * trial.rate[0] + eps[1] * trial.rate[1]) / e;
+        events.push(ContactEvent {
+            time: t1,
+            crank_angle_deg: model.crank_deg(t1),
+            kind: if now_contact {
+                ContactEventKind::Onset
+            } else {
+                ContactEventKind::Release
+            },
+            radial_velocity: radial,
+        });
+        if now_contact {
+            hist.impact = step_impact;
+        }
+        hist.in_contact = now_contact;
+    }
+}
+
+/// Impact velocity for a step from the history: frozen during a contact, the approach speed
+/// at t^n otherwise (floored).
+fn step_impact(model: &JointModel<'_>, hist: &History) -> f64 {
+    let floor = model.joint.contact.min_impact_speed;
+    if hist.in_contact {
+        return hist.impact;
+    }
+    let (e, r) = (hist.eps[0], hist.rate[0]);
+    let m = e[0].hypot(e[1]);
+    if m > 0.0 {
+        (model.c * (e[0] * r[0] + e[1] * r[1]) / m).max(floor)
+    } else {
+        floor
+    }
+}
+
+/// One BDF2 step from the history to t1: Newton on ε^{n+1}. Returns the accepted trial and ε.
+fn bdf2_step(
+    model: &JointModel<'_>,
+    film: &mut Film,
+    hist: &History,
+    t1: f64,
+    newton: NewtonSettings,
+    info: &mut MechanismInfo,
+) -> Result<(Trial, [f64; 2]), MechanismError> {
+    let NewtonSettings { tol, max_iter } = newton;
+    let dt = t1 - hist.t;
+    let [e_n, e_nm1] = hist.eps;
+    let [r_n, r_nm1] = hist.rate;
+    let a_n = hist.acc;
+    // Variable-step BDF2 (backward Euler on the first step): ẏ^{n+1} = (a₀ y^{n+1} − h)/Δt,
+    // h = a₁ y^n − a₂ y^{n−1} (crate::time_scheme::TimeScheme::bdf2_coefficients).
+    let (a0, hist_e, hist_r) = match hist.last_dt {
+        None => (1.0, e_n, r_n),
+        Some(prev) => {
+            let (a0, a1, a2) = crate::time_scheme::TimeScheme::bdf2_coefficients(dt / prev);
+            (
+                a0,
+                [a1 * e_n[0] - a2 * e_nm1[0], a1 * e_n[1] - a2 * e_nm1[1]],
+                [a1 * r_n[0] - a2 * r_nm1[0], a1 * r_n[1] - a2 * r_nm1[1]],
+            )
+        }
+    };
+    let step_impact = step_impact(model, hist);
+    // Predictor: second-order extrapolation.
+    let mut eps = [
+        e_n[0] + dt * r_n[0] + 0.5 * dt * dt * a_n[0],
+        e_n[1] + dt * r_n[1] + 0.5 * dt * dt * a_n[1],
+    ];
+    // Newton with the Jacobian kept while the updates contract (chord steps) and taken
+    // afresh when they do not; the evaluated iterate is accepted once the next update is
+    // below the tolerance (its film state then belongs to it). Globalised for the stiff,
+    // kinked contact law: an update is at most MAX_NEWTON_STEP long and is halved until the
+    // residual decreases (at most 8 halvings; then a fresh Jacobian, or failure).
+    let eval = |film: &mut Film, eps: [f64; 2], want: bool, info: &mut MechanismInfo| {
+        info.evaluations += 1;
+        evaluate_bdf2(
+            model,
+            film,
+            t1,
+            a0,
+            hist_e,
+            hist_r,
+            eps,
+            step_impact,
+            dt,
+            want,
+            info,
+        )
+    };
+    let mut trial = eval(film, eps, true, info)?;
+    let mut jac: Option<[[f64; 2]; 2]> = None;
+    let mut fresh = false;
+    let mut prev_update = f64::INFINITY;
+    let mut last_update = f64::INFINITY;
+    let mut accepted: Option<Trial> = None;
+    let mut iter = 0;
+    while iter < max_iter {
+        iter += 1;
+        let j = match jac {
+            Some(j) => j,
+            None => {
+                if trial.film_jacobian.is_none() && matches!(film, Film::Reynolds(_)) {
+                    // The film's Jacobian belongs to its last solve: solve at ε again.
+                    trial = eval(film, eps, true, info)?;
+                }
+                let j = bdf2_jacobian(
+                    model,
+                    film,
+                    t1,
+                    a0,
+                    hist_e,
+                    hist_r,
+                    eps,
+                    step_impact,
+                    dt,
+                    &trial,
+                )?;
+                jac = Some(j);
+                fresh = true;
+                j
+            }
+        };
+        let Some(d) = solve2(j, trial.residual) else {
+            return Err(MechanismError::NewtonFailed {
+                time: t1,
+                crank_angle_deg: model.crank_deg(t1),
+                update: f64::INFINITY,
+                iterations: iter,
+            });
+        };
+        last_update = d[0].hypot(d[1]);
+        if last_update <= tol {
+            accepted = Some(trial);
+            break;
+        }
+        let r0 = trial.residual[0].hypot(trial.residual[1]);
+        let mut lam = (MAX_NEWTON_STEP / last_update).min(1.0);
+        let mut next = None;
+        for _ in 0..=8 {
+            let cand = [eps[0] - lam * d[0], eps[1] - lam * d[1]];
+            let t = eval(film, cand, false, info)?;
+            let rn = t.residual[0].hypot(t.residual[1]);
+            if rn < r0 || lam * last_update <= 10.0 * tol {
+                next = Some((cand, t));
+                break;
+            }
+            lam *= 0.5;
+        }
+        match next {
+            Some((cand, t)) => {
+                eps = cand;
+                trial = t;
+                if !fresh && last_update > 0.3 * prev_update {
+                    jac = None;
+                }
+                fresh = false;
+                prev_update = lam * last_update;
+            }
+            None if !fresh => {
+                jac = None; // retry from ε with a fresh Jacobian
+                prev_update = f64::INFINITY;
+            }
+            None => break,
+        }
+    }
+    let Some(trial) = accepted else {
+        return Err(MechanismError::NewtonFailed {
+            time: t1,
+            crank_angle_deg: model.crank_deg(t1),
+            update: last_update,
+            iterations: max_iter,
+        });
+    };
+    Ok((trial, eps))
 }
 
 /// The residual of one BDF2 step at the trial ε (one film step for the Reynolds film).
