@@ -273,6 +273,24 @@ fn integrators_agree_and_bdf2_converges_at_second_order() {
         );
         errs.push(de);
     }
+    // The default Newton tolerance (1e-7 in ε) changes nothing visible.
+    p.integrator = Integrator::bdf2_default();
+    let s = solve_mechanism(&p).unwrap();
+    let n = p.samples_per_turn;
+    let de_default = r.eccentricity[n..]
+        .iter()
+        .zip(&s.eccentricity[n..])
+        .map(|(a, b)| norm([a[0] - b[0], a[1] - b[1]]))
+        .fold(0.0, f64::max);
+    println!(
+        "BDF2 default vs Radau5: max |Δe| {:.4} µm",
+        1e6 * de_default
+    );
+    assert!(
+        (de_default - errs[0]).abs() < 0.01 * errs[0],
+        "{de_default} vs {}",
+        errs[0]
+    );
     // Radau5 at rtol 1e-8 is far more accurate than BDF2 here: the difference is BDF2's error,
     // O(Δt²): ×4 per halving (≥ 3 allowed), and below 0.1 µm (0.05 % of c) at 1° steps.
     assert!(errs[0] < 0.1e-6, "{errs:?}");
@@ -491,6 +509,16 @@ fn clearance_and_viscosity_study() {
                     .map(|e| format!("{:.1}", e.crank_angle_deg))
                     .unwrap_or("-".into())
             );
+            // Events alternate onset / release, onsets moving outwards, releases inwards.
+            for (i, e) in s.contact_events.iter().enumerate() {
+                let want = if i % 2 == 0 {
+                    ContactEventKind::Onset
+                } else {
+                    ContactEventKind::Release
+                };
+                assert_eq!(e.kind, want, "c {c} μ {mu}: {:?}", s.contact_events);
+                assert!((e.radial_velocity > 0.0) == (want == ContactEventKind::Onset));
+            }
             h.insert(
                 ((c * 1e4) as i64, (mu * 100.0) as i64),
                 (
