@@ -76,6 +76,10 @@
 //!   [`crate::reynolds`] through [`crate::inverse::ReynoldsFilm`];
 //! - dry contact and the transition: [`contact`] (Lankarani–Nikravesh, seed 004 eq. 20).
 //!
+//! Left out, as in seed 004 (eqs. 33–34 transport the film force only): the film's viscous
+//! friction torque on the journal, 2πμR³Lφ̇₃/(c√(1−ε²)) ≈ 0.1 N m for Table 3 against a
+//! driving moment of 139 N m, and friction in the dry contact.
+//!
 //! # Integration
 //!
 //! The film makes the equations stiff: its damping ∂F/∂ė ≈ 12π μ L R³/c³ (1−ε²)^{−3/2} is
@@ -384,7 +388,8 @@ pub struct MechanismInfo {
     pub steps: usize,
     /// Rejected steps (Radau5) — 0 for BDF2.
     pub rejected_steps: usize,
-    /// Right-hand-side evaluations (Radau5) or Newton iterations (BDF2).
+    /// Right-hand-side evaluations (Radau5) or residual evaluations of the BDF2 Newton (for
+    /// the Reynolds film each is one film step, see `film_steps`).
     pub evaluations: usize,
     /// Reynolds film steps (including the Newton iterates), 0 for closed forms.
     pub film_steps: usize,
