@@ -11,7 +11,7 @@
 //! ```
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -21,22 +21,101 @@ use rayon::prelude::*;
 use crate::budget::Limits;
 use crate::case::CaseWarning;
 use crate::output::Method;
-use crate::run::{CaseOutcome, RunError, RunObserver, run_case_file};
+use crate::run::{CaseOutcome, RunError, RunObserver, run_case};
+use crate::sweep::CaseJob;
 
 /// Outcome of one case in a batch.
 #[derive(Debug)]
 pub struct BatchEntry {
     /// The case file.
     pub path: PathBuf,
+    /// The case's name (a sweep point's own).
+    pub name: String,
     /// Its report and files, or why it failed.
     pub result: Result<CaseOutcome, RunError>,
 }
 
-/// The name a case goes by before its file is read (progress bars, failed rows): the file stem.
-fn case_stem(path: &std::path::Path) -> String {
-    path.file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default()
+/// One shard of a batch: `index` of `count` (0-based, as Slurm's array task ids).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, 0 … count − 1.
+    pub index: usize,
+    /// Number of shards.
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole batch as one shard.
+    pub const ALL: Shard = Shard { index: 0, count: 1 };
+
+    /// `I/N` as given on the command line.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let (i, n) = text
+            .split_once('/')
+            .ok_or_else(|| format!("--shard takes I/N (e.g. 0/4), got {text:?}"))?;
+        let index: usize = i
+            .trim()
+            .parse()
+            .map_err(|_| format!("--shard {text}: I is not a number"))?;
+        let count: usize = n
+            .trim()
+            .parse()
+            .map_err(|_| format!("--shard {text}: N is not a number"))?;
+        if count == 0 || index >= count {
+            return Err(format!(
+                "--shard {text}: need 0 ≤ I < N (shards are numbered from 0, as Slurm array \
+                 task ids)"
+            ));
+        }
+        Ok(Self { index, count })
+    }
+
+    /// Whether the case named `name` belongs to this shard ([`crate::sweep::shard_of`]).
+    pub fn holds(&self, name: &str) -> bool {
+        crate::sweep::shard_of(name, self.count) == self.index
+    }
+
+    /// File name of this shard's manifest: `shard_I_of_N.json`.
+    pub fn manifest_name(&self) -> String {
+        format!("shard_{}_of_{}.json", self.index, self.count)
+    }
+
+    /// File name of this shard's summary: `batch_summary.csv` for a whole batch, else
+    /// `shard_I_of_N_summary.csv`.
+    pub fn summary_name(&self) -> String {
+        if self.count == 1 {
+            "batch_summary.csv".into()
+        } else {
+            format!("shard_{}_of_{}_summary.csv", self.index, self.count)
+        }
+    }
+}
+
+/// How a batch runs.
+#[derive(Debug, Clone)]
+pub struct BatchOptions {
+    /// Where the cases' files go.
+    pub out_dir: PathBuf,
+    /// Cases solved at once (0 = one per core).
+    pub jobs: usize,
+    /// Progress display.
+    pub progress: Progress,
+    /// Cost limits per case.
+    pub limits: Limits,
+    /// Which part of the batch to run.
+    pub shard: Shard,
+    /// Recompute cases whose output file exists (else they are skipped: resume).
+    pub force: bool,
+}
+
+/// What a batch did.
+#[derive(Debug)]
+pub struct BatchRun {
+    /// The cases it solved (or failed to).
+    pub entries: Vec<BatchEntry>,
+    /// The cases of this shard it skipped because their complete output exists (written
+    /// atomically: an existing CASE.h5 is a whole one).
+    pub skipped: Vec<CaseJob>,
 }
 
 /// Expand directories into their `*.toml` files (sorted), keep files as given.
@@ -173,13 +252,26 @@ impl RunObserver for ProgressObserver {
 /// pool gets at most min(cases, cores) threads, whatever `jobs` says. Cases estimated above
 /// `limits` fail before their solve. Progress goes to stderr as `progress` says; warnings
 /// always do. Returns one entry per case, in order.
-pub fn run_batch(
-    paths: &[PathBuf],
-    out_dir: &Path,
-    jobs: usize,
-    progress: Progress,
-    limits: &Limits,
-) -> Vec<BatchEntry> {
+pub fn run_batch(all: &[CaseJob], options: &BatchOptions) -> BatchRun {
+    let BatchOptions {
+        out_dir,
+        jobs,
+        progress,
+        limits,
+        shard,
+        force,
+    } = options;
+    let (jobs, progress) = (*jobs, *progress);
+    // This shard's cases, minus those whose output is there already (unless forced).
+    let mine: Vec<(usize, &CaseJob)> = all
+        .iter()
+        .enumerate()
+        .filter(|(_, j)| shard.holds(&j.name))
+        .collect();
+    type Indexed<'a> = Vec<(usize, &'a CaseJob)>;
+    let (todo, skipped): (Indexed, Indexed) = mine
+        .into_iter()
+        .partition(|(_, j)| *force || !out_dir.join(format!("{}.h5", j.name)).is_file());
     let multi = MultiProgress::with_draw_target(if progress == Progress::Bars {
         ProgressDrawTarget::stderr()
     } else {
@@ -193,88 +285,160 @@ pub fn run_batch(
         started: Instant::now(),
         bars: Mutex::new(Vec::new()),
     };
-    // The name each case goes by in the progress (its `name`, or its file stem when the file
-    // cannot be read), and which cases repeat an earlier case's name: those would overwrite its
-    // files, so they fail before any solve, naming the earlier file.
-    let names: Vec<Option<String>> = paths
-        .iter()
-        .map(|p| crate::case::Case::from_file(p).ok().map(|c| c.name))
-        .collect();
+    // Cases that repeat an earlier case's name (over the whole batch, every shard) would
+    // overwrite its files, so they fail before any solve, naming the earlier file.
     let mut first_with_name: std::collections::HashMap<&str, &PathBuf> =
         std::collections::HashMap::new();
-    let duplicate_of: Vec<Option<(String, PathBuf)>> = paths
-        .iter()
-        .zip(&names)
-        .map(|(p, name)| {
-            let name = name.as_deref()?;
-            match first_with_name.get(name) {
-                Some(other) => Some((name.to_string(), (*other).clone())),
-                None => {
-                    first_with_name.insert(name, p);
-                    None
-                }
+    let mut duplicate: std::collections::HashMap<usize, PathBuf> = std::collections::HashMap::new();
+    for (k, j) in all.iter().enumerate() {
+        match first_with_name.get(j.name.as_str()) {
+            Some(other) => {
+                duplicate.insert(k, (*other).clone());
             }
-        })
-        .collect();
+            None => {
+                first_with_name.insert(&j.name, &j.path);
+            }
+        }
+    }
     let mut bars = Vec::new();
-    for (p, name) in paths.iter().zip(&names) {
-        let name = name.clone().unwrap_or_else(|| case_stem(p));
+    for (_, j) in &todo {
         let bar = multi.add(ProgressBar::new_spinner());
         bar.set_style(style.clone());
-        bar.set_prefix(name.clone());
+        bar.set_prefix(j.name.clone());
         bar.set_message("queued");
         if progress == Progress::Bars {
             bar.enable_steady_tick(Duration::from_millis(200));
         }
-        bars.push((name.clone(), bar.clone()));
+        bars.push(bar.clone());
         observer
             .bars
             .lock()
             .expect("progress bars")
-            .push((name, bar));
+            .push((j.name.clone(), bar));
     }
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let threads = if jobs == 0 { cores } else { jobs.min(cores) };
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.min(paths.len()).max(1))
+        .num_threads(threads.min(todo.len()).max(1))
         .build()
         .expect("a thread pool of at most as many threads as cores");
     let entries: Vec<BatchEntry> = pool.install(|| {
-        paths
-            .par_iter()
+        todo.par_iter()
             .zip(bars.par_iter())
-            .zip(duplicate_of.par_iter())
-            .map(|((p, (name, bar)), duplicate)| {
+            .map(|((k, job), bar)| {
                 bar.set_message("reading the case");
-                let result = match duplicate {
-                    Some((name, other)) => Err(RunError::DuplicateName {
-                        case: name.clone(),
-                        path: p.display().to_string(),
+                let result = match duplicate.get(k) {
+                    Some(other) => Err(RunError::DuplicateName {
+                        case: job.name.clone(),
+                        path: job.path.display().to_string(),
                         other: other.display().to_string(),
                     }),
-                    None => run_case_file(p, out_dir, limits, &observer),
+                    None => job
+                        .case()
+                        .map_err(RunError::from)
+                        .and_then(|case| run_case(&case, out_dir, limits, &observer)),
                 };
                 match &result {
                     Ok(o) => {
                         let message = format!("done, {} files", o.files.len());
-                        observer.event(name, message.clone());
+                        observer.event(&job.name, message.clone());
                         bar.finish_with_message(message);
                     }
                     Err(e) => {
                         let message = format!("FAILED: {e}");
-                        observer.event(name, message.clone());
+                        observer.event(&job.name, message.clone());
                         bar.finish_with_message(message);
                     }
                 }
                 BatchEntry {
-                    path: p.clone(),
+                    path: job.path.clone(),
+                    name: job.name.clone(),
                     result,
                 }
             })
             .collect()
     });
     multi.clear().ok();
-    entries
+    BatchRun {
+        entries,
+        skipped: skipped.into_iter().map(|(_, j)| j.clone()).collect(),
+    }
+}
+
+/// One case in a shard manifest.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ManifestCase {
+    /// Case name.
+    pub name: String,
+    /// The case file.
+    pub file: String,
+    /// The shard it belongs to.
+    pub shard: usize,
+    /// Swept keys and values (empty for a plain case).
+    pub parameters: Vec<(String, f64)>,
+    /// `ok`, `skipped` (its output existed), `failed`, or `other shard`.
+    pub status: String,
+    /// Why it failed ("" otherwise).
+    pub message: String,
+}
+
+/// What a shard ran: every case of the whole batch with its shard, and this shard's outcome
+/// for each of its own (`jbearing merge` reads it to know which cases to expect).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Manifest {
+    /// This shard.
+    pub shard: usize,
+    /// Number of shards.
+    pub shards: usize,
+    /// Every case of the batch.
+    pub cases: Vec<ManifestCase>,
+}
+
+impl Manifest {
+    /// The manifest of `run`, a run of `shard` over the batch `all`.
+    pub fn of(all: &[CaseJob], shard: Shard, run: &BatchRun) -> Self {
+        let cases = all
+            .iter()
+            .map(|j| {
+                let (status, message) = if !shard.holds(&j.name) {
+                    ("other shard".to_string(), String::new())
+                } else if run.skipped.iter().any(|s| s.name == j.name) {
+                    ("skipped".into(), String::new())
+                } else {
+                    match run.entries.iter().find(|e| e.name == j.name) {
+                        Some(BatchEntry { result: Ok(o), .. }) if has_failed_method(&o.report) => (
+                            "ok".into(),
+                            method_failures(&o.report)
+                                .iter()
+                                .map(|(m, why)| format!("{m}: {why}"))
+                                .collect::<Vec<_>>()
+                                .join("; "),
+                        ),
+                        Some(BatchEntry { result: Ok(_), .. }) => ("ok".into(), String::new()),
+                        Some(BatchEntry { result: Err(e), .. }) => ("failed".into(), e.to_string()),
+                        None => ("failed".into(), "not run".into()),
+                    }
+                };
+                ManifestCase {
+                    name: j.name.clone(),
+                    file: j.path.display().to_string(),
+                    shard: crate::sweep::shard_of(&j.name, shard.count),
+                    parameters: j
+                        .parameters
+                        .iter()
+                        .map(|p| (p.key.clone(), p.value))
+                        .collect(),
+                    status,
+                    message,
+                }
+            })
+            .collect();
+        Self {
+            shard: shard.index,
+            shards: shard.count,
+            cases,
+        }
+    }
 }
 
 /// Columns of the summary table: (summary row, header with display units).
@@ -313,7 +477,7 @@ pub fn summary_csv(entries: &[BatchEntry]) -> String {
     for e in entries {
         match &e.result {
             Err(err) => {
-                let mut cells = vec![case_stem(&e.path), "failed".into()];
+                let mut cells = vec![e.name.clone(), "failed".into()];
                 cells.extend(std::iter::repeat_n(String::new(), 5));
                 cells.push(err.to_string());
                 row(cells);
@@ -358,7 +522,7 @@ pub fn summary_table(entries: &[BatchEntry]) -> String {
     }
     s.push('\n');
     for e in entries {
-        let name = case_stem(&e.path);
+        let name = &e.name;
         match &e.result {
             Err(err) => {
                 let _ = writeln!(s, "{name:<26} {:<10} {:<14} {err}", "-", "FAILED");

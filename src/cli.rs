@@ -7,7 +7,9 @@ use std::io::IsTerminal;
 
 use clap::{Args, Parser, Subcommand};
 
-use crate::batch::{Progress, collect_cases, run_batch, summary_csv, summary_table};
+use crate::batch::{
+    BatchOptions, Manifest, Progress, Shard, collect_cases, run_batch, summary_csv, summary_table,
+};
 use crate::budget::{Limits, estimate, human_bytes, human_seconds};
 use crate::case::Case;
 use crate::case::compressor::Compressor;
@@ -59,6 +61,17 @@ pub enum Command {
         /// Limits on the estimated cost of a case.
         #[command(flatten)]
         budget: BudgetArgs,
+    },
+    /// Merge the results of a batch (all its shards' output directories) into one netCDF
+    /// dataset along a `case` dimension, the swept keys as coordinates; missing and failed
+    /// cases are listed (and exit non-zero), never dropped.
+    Merge {
+        /// Output directories of the batch (each with its shard_I_of_N.json).
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// The merged file.
+        #[arg(short, long)]
+        out: PathBuf,
     },
     /// Print the static equilibrium of the closed-form film models (short / long bearing,
     /// Sommerfeld / Gumbel, Pinkus–Sternlicht) under the case's constant or cycle-mean load,
@@ -138,6 +151,14 @@ pub struct BatchArgs {
     /// Limits on the estimated cost of each case.
     #[command(flatten)]
     pub budget: BudgetArgs,
+    /// Run only shard I of N (0 ≤ I < N): the cases whose name hashes to I (stable: a case
+    /// always lands in the same shard, whatever the order of the files). Writes
+    /// OUT/shard_I_of_N_summary.csv and OUT/shard_I_of_N.json (for `jbearing merge`).
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// Recompute cases whose OUT/CASE.h5 exists (by default they are skipped: a re-run resumes).
+    #[arg(long)]
+    pub force: bool,
 }
 
 fn init_logging(verbose: u8, quiet: bool) {
@@ -170,14 +191,33 @@ pub fn main_with(cli: Cli) -> ExitCode {
         Command::Run(a) => {
             // The same progress and warnings as a batch of one.
             let progress = Progress::for_stderr(!a.no_progress && !cli.quiet);
-            let mut entries = run_batch(
-                std::slice::from_ref(&a.case),
-                &a.out,
-                1,
-                progress,
-                &a.budget.limits(),
+            // One case as given (a sweep file is refused by the case reader: `batch` runs it).
+            let job = crate::sweep::CaseJob {
+                path: a.case.clone(),
+                name: crate::case::Case::from_file(&a.case).map_or_else(
+                    |_| {
+                        a.case
+                            .file_stem()
+                            .map(|s| s.to_string_lossy().into_owned())
+                            .unwrap_or_default()
+                    },
+                    |c| c.name,
+                ),
+                text: None,
+                parameters: Vec::new(),
+            };
+            let mut run = run_batch(
+                std::slice::from_ref(&job),
+                &BatchOptions {
+                    out_dir: a.out.clone(),
+                    jobs: 1,
+                    progress,
+                    limits: a.budget.limits(),
+                    shard: Shard::ALL,
+                    force: true,
+                },
             );
-            let entry = entries.remove(0);
+            let entry = run.entries.remove(0);
             match entry.result {
                 Ok(o) => {
                     for f in &o.files {
@@ -189,6 +229,7 @@ pub fn main_with(cli: Cli) -> ExitCode {
                         "{}",
                         summary_table(&[crate::batch::BatchEntry {
                             path: a.case.clone(),
+                            name: job.name.clone(),
                             result: Ok(o),
                         }])
                     );
@@ -220,26 +261,68 @@ pub fn main_with(cli: Cli) -> ExitCode {
                     return ExitCode::FAILURE;
                 }
             };
+            let all = match crate::sweep::expand_all(&paths) {
+                Ok(all) => all,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
+            let shard = match a.shard.as_deref().map(Shard::parse).transpose() {
+                Ok(s) => s.unwrap_or(Shard::ALL),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
             let progress = Progress::for_stderr(!a.no_progress && !cli.quiet);
-            let entries = run_batch(&paths, &a.out, a.jobs, progress, &a.budget.limits());
-            print!("{}", summary_table(&entries));
-            let csv = a.out.join("batch_summary.csv");
+            let run = run_batch(
+                &all,
+                &BatchOptions {
+                    out_dir: a.out.clone(),
+                    jobs: a.jobs,
+                    progress,
+                    limits: a.budget.limits(),
+                    shard,
+                    force: a.force,
+                },
+            );
+            let entries = &run.entries;
+            print!("{}", summary_table(entries));
+            for j in &run.skipped {
+                println!(
+                    "{:<26} skipped: {}.h5 exists (--force recomputes)",
+                    j.name, j.name
+                );
+            }
+            let csv = a.out.join(shard.summary_name());
+            let manifest_path = a.out.join(shard.manifest_name());
+            let manifest = Manifest::of(&all, shard, &run);
+            let write_text = |path: &std::path::Path, text: String| {
+                crate::output::write_atomically(path, |tmp| {
+                    std::fs::write(tmp, &text).map_err(|source| crate::output::OutputError::Io {
+                        action: "writing",
+                        path: path.to_path_buf(),
+                        source,
+                    })
+                })
+                .map_err(|e| e.to_string())
+            };
             let written = std::fs::create_dir_all(&a.out)
                 .map_err(|e| e.to_string())
+                .and_then(|_| write_text(&csv, summary_csv(entries)))
                 .and_then(|_| {
-                    crate::output::write_atomically(&csv, |tmp| {
-                        std::fs::write(tmp, summary_csv(&entries)).map_err(|source| {
-                            crate::output::OutputError::Io {
-                                action: "writing",
-                                path: csv.clone(),
-                                source,
-                            }
-                        })
-                    })
-                    .map_err(|e| e.to_string())
+                    write_text(
+                        &manifest_path,
+                        serde_json::to_string_pretty(&manifest).expect("a manifest serialises"),
+                    )
                 });
             if let Err(e) = written {
-                eprintln!("error: writing {}: {e}", csv.display());
+                eprintln!(
+                    "error: writing {} / {}: {e}",
+                    csv.display(),
+                    manifest_path.display()
+                );
                 return ExitCode::FAILURE;
             }
             println!("summary: {}", csv.display());
@@ -262,6 +345,34 @@ pub fn main_with(cli: Cli) -> ExitCode {
                 ExitCode::SUCCESS
             }
         }
+        Command::Merge { dirs, out } => match crate::merge::merge(&dirs, &out) {
+            Ok(info) => {
+                let incomplete = info.incomplete();
+                println!(
+                    "wrote {} ({} cases, {} ok)",
+                    out.display(),
+                    info.cases.len(),
+                    info.cases.len() - incomplete.len()
+                );
+                for (name, status) in &incomplete {
+                    eprintln!("{name}: {status}");
+                }
+                if incomplete.is_empty() {
+                    ExitCode::SUCCESS
+                } else {
+                    eprintln!(
+                        "{} of {} cases missing or failed (listed above; NaN in the file)",
+                        incomplete.len(),
+                        info.cases.len()
+                    );
+                    ExitCode::FAILURE
+                }
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        },
         Command::ClosedForm { case } => match Case::from_file(&case) {
             Ok(c) => {
                 let models = if c.closed_form_models.is_empty() {
@@ -317,48 +428,77 @@ fn check(cases: &[PathBuf], out: Option<&std::path::Path>, limits: &Limits) -> E
     }
     let mut seen: std::collections::HashMap<String, PathBuf> = std::collections::HashMap::new();
     for c in cases {
-        let case = match Case::from_file(c) {
-            Ok(case) => case,
+        let jobs = match crate::sweep::expand_file(c) {
+            Ok(jobs) => jobs,
             Err(e) => {
                 eprintln!("error: {e}");
                 bad += 1;
                 continue;
             }
         };
-        if let Some(other) = seen.get(&case.name) {
-            eprintln!(
-                "error: {}: case name '{}' is already used by {}: their output files would \
-                 overwrite each other in one batch (give each case its own name)",
+        let sweep = jobs.iter().any(|j| j.text.is_some());
+        let (mut memory, mut seconds, mut ok) = (0.0f64, 0.0, 0usize);
+        for job in &jobs {
+            let case = match job.case() {
+                Ok(case) => case,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    bad += 1;
+                    continue;
+                }
+            };
+            if let Some(other) = seen.get(&case.name) {
+                eprintln!(
+                    "error: {}: case name '{}' is already used by {}: their output files would \
+                     overwrite each other in one batch (give each case its own name)",
+                    c.display(),
+                    case.name,
+                    other.display()
+                );
+                bad += 1;
+                continue;
+            }
+            seen.insert(case.name.clone(), c.clone());
+            let budget = match crate::budget::check(&case, limits) {
+                Ok(w) => w,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    bad += 1;
+                    continue;
+                }
+            };
+            for w in case.warnings.iter().chain(&budget) {
+                eprintln!("warning: {w}");
+            }
+            let e = estimate(&case);
+            memory = memory.max(e.memory_bytes);
+            seconds += e.seconds;
+            ok += 1;
+            if !sweep {
+                println!(
+                    "{}: ok (case '{}', {} groove(s), grid {} × {}; estimated {}, {})",
+                    c.display(),
+                    case.name,
+                    case.grooves.len(),
+                    case.n_theta,
+                    case.n_z,
+                    human_bytes(e.memory_bytes),
+                    human_seconds(e.seconds)
+                );
+            }
+        }
+        if sweep {
+            let keys: Vec<&str> = jobs[0].parameters.iter().map(|p| p.key.as_str()).collect();
+            println!(
+                "{}: sweep of {} cases over {} ({ok} ok; estimated {} each at most, {} in all \
+                 on one core)",
                 c.display(),
-                case.name,
-                other.display()
+                jobs.len(),
+                keys.join(", "),
+                human_bytes(memory),
+                human_seconds(seconds)
             );
-            bad += 1;
-            continue;
         }
-        seen.insert(case.name.clone(), c.clone());
-        let budget = match crate::budget::check(&case, limits) {
-            Ok(w) => w,
-            Err(e) => {
-                eprintln!("error: {e}");
-                bad += 1;
-                continue;
-            }
-        };
-        for w in case.warnings.iter().chain(&budget) {
-            eprintln!("warning: {w}");
-        }
-        let e = estimate(&case);
-        println!(
-            "{}: ok (case '{}', {} groove(s), grid {} × {}; estimated {}, {})",
-            c.display(),
-            case.name,
-            case.grooves.len(),
-            case.n_theta,
-            case.n_z,
-            human_bytes(e.memory_bytes),
-            human_seconds(e.seconds)
-        );
     }
     if bad > 0 {
         ExitCode::FAILURE

@@ -8,7 +8,9 @@
 //! - [`budget`]: a case's estimated memory and time, against the limits.
 //! - [`cli`]: the `jbearing` command line.
 //! - [`closed_form_report`]: the closed-form static-equilibrium table of a case.
+//! - [`merge`]: `jbearing merge`, a batch's results in one netCDF dataset along `case`.
 //! - [`output`]: the writers (HDF5, plots, CSV summary).
+//! - [`sweep`]: `[sweep]` tables expanded into named cases, and the shard of a case.
 //! - [`validate`]: `jbearing validate`, the validation cases against their published values.
 
 pub mod batch;
@@ -16,6 +18,8 @@ pub mod budget;
 pub mod case;
 pub mod cli;
 pub mod closed_form_report;
+pub mod merge;
 pub mod output;
 pub mod run;
+pub mod sweep;
 pub mod validate;

@@ -1323,7 +1323,17 @@ pub fn run_case_file(
     limits: &Limits,
     observer: &dyn RunObserver,
 ) -> Result<CaseOutcome, RunError> {
-    let case = Case::from_file(path)?;
+    run_case(&Case::from_file(path)?, out_dir, limits, observer)
+}
+
+/// [`run_case_file`] for a case already read (a sweep point, `crate::sweep`).
+pub fn run_case(
+    case: &Case,
+    out_dir: &Path,
+    limits: &Limits,
+    observer: &dyn RunObserver,
+) -> Result<CaseOutcome, RunError> {
+    let case = case.clone();
     let mut warnings = case.warnings.clone();
     warnings.extend(budget::check(&case, limits)?);
     for w in &warnings {

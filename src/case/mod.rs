@@ -908,6 +908,13 @@ fn schedule(
 }
 
 fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
+    if raw.sweep.is_some() {
+        return Err(ctx.err(
+            crate::sweep::SWEEP_TABLE,
+            "this file is a sweep, one case per point: run it with `jbearing batch` (which \
+             expands it; `jbearing check` prints the expansion)",
+        ));
+    }
     if raw.version != 1 {
         return Err(ctx.err(
             "version",

@@ -41,6 +41,9 @@ pub struct CaseFile {
     pub methods: MethodsSection,
     /// Closed-form static-equilibrium table, `[closed_form]`.
     pub closed_form: Option<ClosedFormSection>,
+    /// A parameter sweep (`crate::sweep`): the file stands for many cases, which `batch` and
+    /// `check` expand; a single case (`run`) refuses it.
+    pub sweep: Option<toml::Table>,
 }
 
 /// `[closed_form]`.

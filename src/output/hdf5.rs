@@ -124,7 +124,8 @@ impl OutputWriter for Hdf5Writer {
 }
 
 /// State of one file being written: its final path for messages and the netCDF dimension ids.
-struct FileWriter {
+/// Also the writer of `jbearing merge` ([`crate::merge`]).
+pub(crate) struct FileWriter {
     path: PathBuf,
     next_dimid: i32,
 }
@@ -132,7 +133,78 @@ struct FileWriter {
 type Res<T> = Result<T, OutputError>;
 
 impl FileWriter {
-    fn err<C: Into<String>>(&self, context: C) -> impl FnOnce(h5::Error) -> OutputError + use<C> {
+    /// A writer for a file whose final path is `path` (used in messages).
+    pub(crate) fn new(path: &Path) -> Self {
+        Self {
+            path: path.to_path_buf(),
+            next_dimid: 0,
+        }
+    }
+
+    /// A string coordinate variable that is its own dimension (`solution_method`, `case`).
+    pub(crate) fn string_coordinate(
+        &mut self,
+        g: &h5::Group,
+        name: &str,
+        labels: &[String],
+        long_name: &str,
+    ) -> Res<h5::Dataset> {
+        let v: Vec<VarLenUnicode> = labels.iter().map(|l| vlen(l)).collect();
+        let ds = g
+            .new_dataset_builder()
+            .with_data(&v[..])
+            .create(name)
+            .map_err(self.err(format!("coordinate {name}")))?;
+        self.make_scale(&ds, name)?;
+        self.str_attr(&ds, "long_name", long_name)?;
+        Ok(ds)
+    }
+
+    /// A string data variable along one dimension.
+    pub(crate) fn string_variable(
+        &mut self,
+        g: &h5::Group,
+        name: &str,
+        values: &[String],
+        dim: &h5::Dataset,
+        long_name: &str,
+    ) -> Res<h5::Dataset> {
+        let v: Vec<VarLenUnicode> = values.iter().map(|l| vlen(l)).collect();
+        let ds = g
+            .new_dataset_builder()
+            .with_data(&v[..])
+            .create(name)
+            .map_err(self.err(format!("variable {name}")))?;
+        self.attach(&ds, &[dim], name)?;
+        self.str_attr(&ds, "long_name", long_name)?;
+        Ok(ds)
+    }
+
+    /// A 2-D f64 data variable along two dimension scales, NaN as its fill value.
+    pub(crate) fn variable_2d(
+        &mut self,
+        g: &h5::Group,
+        name: &str,
+        values: &ndarray::Array2<f64>,
+        dims: [&h5::Dataset; 2],
+        units: &str,
+        long_name: &str,
+    ) -> Res<h5::Dataset> {
+        let ds = g
+            .new_dataset_builder()
+            .with_data(values)
+            .create(name)
+            .map_err(self.err(format!("variable {name}")))?;
+        self.attach(&ds, &dims, name)?;
+        self.str_attr(&ds, "units", units)?;
+        self.str_attr(&ds, "long_name", long_name)?;
+        self.f64_attr(&ds, "_FillValue", f64::NAN)?;
+        Ok(ds)
+    }
+    pub(crate) fn err<C: Into<String>>(
+        &self,
+        context: C,
+    ) -> impl FnOnce(h5::Error) -> OutputError + use<C> {
         let path = self.path.clone();
         let context = context.into();
         move |source| OutputError::Hdf5 {
@@ -505,7 +577,7 @@ impl FileWriter {
     }
 
     /// A 1-D coordinate variable that is also its own dimension (netCDF "coordinate variable").
-    fn coordinate(
+    pub(crate) fn coordinate(
         &mut self,
         g: &h5::Group,
         name: &str,
@@ -545,7 +617,7 @@ impl FileWriter {
     }
 
     /// A 1-D data variable along the given dimension scales.
-    fn variable(
+    pub(crate) fn variable(
         &mut self,
         g: &h5::Group,
         name: &str,
@@ -595,7 +667,7 @@ impl FileWriter {
         self.str_attr(&ds, "long_name", long)
     }
 
-    fn str_attr(&self, loc: &h5::Location, name: &str, value: &str) -> Res<()> {
+    pub(crate) fn str_attr(&self, loc: &h5::Location, name: &str, value: &str) -> Res<()> {
         let v = vlen(value);
         loc.new_attr::<VarLenUnicode>()
             .shape(())
@@ -604,7 +676,7 @@ impl FileWriter {
             .map_err(self.err(format!("attribute {name}")))
     }
 
-    fn f64_attr(&self, loc: &h5::Location, name: &str, value: f64) -> Res<()> {
+    pub(crate) fn f64_attr(&self, loc: &h5::Location, name: &str, value: f64) -> Res<()> {
         loc.new_attr::<f64>()
             .shape(())
             .create(name)

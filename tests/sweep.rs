@@ -1,0 +1,262 @@
+//! Sweeps, shards and merges end to end (issue 18): a `[sweep]` case expands into named cases;
+//! four shards run as separate processes at once (the GNU parallel / job-array form) and their
+//! merge equals the merge of one unsharded batch bit for bit; a re-run resumes (skips what
+//! exists) unless forced; a missing shard is listed, never dropped.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn jbearing(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_jbearing"))
+        .args(args)
+        .env("NO_COLOR", "1")
+        .env_remove("RUST_LOG")
+        .output()
+        .expect("run jbearing")
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+/// A cheap swept case: Booker's mobility method on a small grooved bearing under a rotating
+/// load, 3 clearances × 2 viscosities = 6 cases.
+fn sweep_case(dir: &Path) -> PathBuf {
+    let p = dir.join("sweep.toml");
+    std::fs::write(
+        &p,
+        r#"version = 1
+name = "sw"
+
+[bearing]
+radius_m = 0.025
+length_m = 0.02
+radial_clearance_m = 4e-5
+
+[[grooves]]
+center_angle_deg = 90.0
+circumferential_length_m = 0.006
+axial_width_m = 0.006
+
+[lubricant]
+viscosity_pa_s = 0.02
+
+[operation]
+cycle_deg = 360.0
+crank_speed_rpm = 1800.0
+
+[load]
+crank_angle_deg = [0.0, 90.0, 180.0, 270.0]
+x_n = [-2000.0, -1500.0, -1000.0, -1500.0]
+y_n = [0.0, 500.0, 0.0, -500.0]
+
+[solver]
+mobility_model = "booker"
+
+[output]
+samples_per_cycle = 72
+plots = false
+
+[methods]
+rigorous = false
+mobility = true
+
+[sweep]
+combine = "factorial"
+[sweep.values]
+"bearing.radial_clearance_m" = [3e-5, 4e-5, 5e-5]
+"lubricant.viscosity_pa_s" = { start = 0.01, stop = 0.04, count = 2, spacing = "log" }
+"#,
+    )
+    .unwrap();
+    p
+}
+
+/// Every dataset of an HDF5 file (recursively): name → raw bytes of its values.
+fn contents(path: &Path) -> Vec<(String, Vec<u8>)> {
+    let f = hdf5_metno::File::open(path).unwrap();
+    let mut out = Vec::new();
+    for name in f.member_names().unwrap() {
+        let ds = f.dataset(&name).unwrap();
+        let bytes = if let Ok(v) = ds.read_raw::<f64>() {
+            v.iter().flat_map(|x| x.to_bits().to_le_bytes()).collect()
+        } else {
+            let v: Vec<hdf5_metno::types::VarLenUnicode> = ds.read_raw().unwrap();
+            v.iter()
+                .flat_map(|s| s.as_str().as_bytes().to_vec())
+                .collect()
+        };
+        out.push((name, bytes));
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn sharded_batch_merges_to_the_unsharded_one_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = sweep_case(dir.path());
+    let c = case.to_str().unwrap();
+
+    let check = jbearing(&["check", c]);
+    assert!(check.status.success(), "{}", text(&check.stderr));
+    assert!(
+        text(&check.stdout)
+            .contains("sweep of 6 cases over bearing.radial_clearance_m, lubricant.viscosity_pa_s"),
+        "{}",
+        text(&check.stdout)
+    );
+    // A single run refuses a sweep file.
+    let run = jbearing(&["run", c, "--out", dir.path().join("x").to_str().unwrap()]);
+    assert!(!run.status.success());
+    assert!(
+        text(&run.stderr).contains("jbearing batch"),
+        "{}",
+        text(&run.stderr)
+    );
+
+    // One batch.
+    let whole = dir.path().join("whole");
+    let w = whole.to_str().unwrap();
+    let out = jbearing(&["batch", c, "--out", w, "--no-progress"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(whole.join("shard_0_of_1.json").is_file());
+    assert!(whole.join("batch_summary.csv").is_file());
+    let a = dir.path().join("a.nc");
+    let m = jbearing(&["merge", w, "--out", a.to_str().unwrap()]);
+    assert!(m.status.success(), "{}", text(&m.stderr));
+
+    // Four shards at once, as separate processes (what GNU parallel or a job array does).
+    let sharded = dir.path().join("sharded");
+    let s = sharded.to_str().unwrap().to_owned();
+    let children: Vec<_> = (0..4)
+        .map(|i| {
+            Command::new(env!("CARGO_BIN_EXE_jbearing"))
+                .args([
+                    "batch",
+                    c,
+                    "--shard",
+                    &format!("{i}/4"),
+                    "--out",
+                    &s,
+                    "--no-progress",
+                ])
+                .env("NO_COLOR", "1")
+                .output()
+        })
+        .collect();
+    for (i, ch) in children.into_iter().enumerate() {
+        let o = ch.unwrap();
+        assert!(o.status.success(), "shard {i}: {}", text(&o.stderr));
+    }
+    for i in 0..4 {
+        assert!(sharded.join(format!("shard_{i}_of_4.json")).is_file());
+    }
+    let b = dir.path().join("b.nc");
+    let m = jbearing(&["merge", &s, "--out", b.to_str().unwrap()]);
+    assert!(m.status.success(), "{}", text(&m.stderr));
+    assert!(
+        text(&m.stdout).contains("6 cases, 6 ok"),
+        "{}",
+        text(&m.stdout)
+    );
+
+    let (ca, cb) = (contents(&a), contents(&b));
+    assert_eq!(
+        ca.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(),
+        cb.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>()
+    );
+    for ((name, x), (_, y)) in ca.iter().zip(&cb) {
+        assert!(
+            x == y,
+            "{name} differs between the sharded and the whole batch"
+        );
+    }
+    // The sweep's coordinates and the cases' numbers are there.
+    let f = hdf5_metno::File::open(&a).unwrap();
+    let clearance: Vec<f64> = f.dataset("radial_clearance_m").unwrap().read_raw().unwrap();
+    assert_eq!(clearance, [3e-5, 3e-5, 4e-5, 4e-5, 5e-5, 5e-5]);
+    let h: Vec<f64> = f
+        .dataset("min_film_thickness_min")
+        .unwrap()
+        .read_raw()
+        .unwrap();
+    assert_eq!(h.len(), 12);
+    // Mobility column (index 1) finite, rigorous (not asked for) NaN; the more viscous oil
+    // carries the load on a thicker film at the same clearance.
+    assert!(h.chunks(2).all(|r| r[0].is_nan() && r[1].is_finite()));
+    assert!(
+        h[3] > h[1],
+        "μ 0.04 vs 0.01 at c = 30 µm: {} vs {}",
+        h[3],
+        h[1]
+    );
+
+    // Resume: a re-run of shard 0 skips its cases; --force recomputes them.
+    let again = jbearing(&["batch", c, "--shard", "0/4", "--out", &s, "--no-progress"]);
+    assert!(again.status.success());
+    let said = text(&again.stdout);
+    let mine = said.matches("skipped:").count();
+    let manifest = std::fs::read_to_string(sharded.join("shard_0_of_4.json")).unwrap();
+    assert_eq!(mine, manifest.matches("\"status\": \"skipped\"").count());
+    assert!(
+        mine >= 1,
+        "shard 0 holds at least one of 6 cases here: {said}"
+    );
+    let forced = jbearing(&[
+        "batch",
+        c,
+        "--shard",
+        "0/4",
+        "--out",
+        &s,
+        "--no-progress",
+        "--force",
+    ]);
+    assert!(forced.status.success());
+    assert_eq!(text(&forced.stdout).matches("skipped:").count(), 0);
+
+    // A missing shard is listed and makes the merge fail, with the file still written.
+    std::fs::remove_file(sharded.join("shard_3_of_4.json")).unwrap();
+    let c_nc = dir.path().join("c.nc");
+    let m = jbearing(&["merge", &s, "--out", c_nc.to_str().unwrap()]);
+    assert!(!m.status.success());
+    let err = text(&m.stderr);
+    assert!(
+        err.contains("missing: shard 3 of 4 has no manifest"),
+        "{err}"
+    );
+    let f = hdf5_metno::File::open(&c_nc).unwrap();
+    let status: Vec<hdf5_metno::types::VarLenUnicode> =
+        f.dataset("status").unwrap().read_raw().unwrap();
+    let missing = status
+        .iter()
+        .filter(|s| s.as_str().starts_with("missing"))
+        .count();
+    assert!(
+        missing >= 1 && missing == err.matches(": missing:").count(),
+        "{err}"
+    );
+}
+
+#[test]
+fn bad_shard_arguments_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = sweep_case(dir.path());
+    for bad in ["4/4", "1", "a/2", "0/0"] {
+        let o = jbearing(&[
+            "batch",
+            case.to_str().unwrap(),
+            "--shard",
+            bad,
+            "--out",
+            dir.path().to_str().unwrap(),
+        ]);
+        assert!(!o.status.success(), "{bad}");
+        assert!(
+            text(&o.stderr).contains("--shard"),
+            "{bad}: {}",
+            text(&o.stderr)
+        );
+    }
+}
