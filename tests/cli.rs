@@ -213,7 +213,8 @@ fn batch_keeps_going_past_a_failing_case() {
     let lines: Vec<&str> = summary.lines().collect();
     assert_eq!(lines.len(), 4, "{summary}");
     assert!(
-        lines[2].starts_with("broken,failed,") && lines[2].contains("load.x_n"),
+        // A failed row goes by the case's name (the file's `name`, read before the case fails).
+        lines[2].starts_with("nan_load,failed,") && lines[2].contains("load.x_n"),
         "{summary}"
     );
     assert!(lines[1].starts_with("benasciutti_jb1_steady,ok,mobility,"));
@@ -740,10 +741,12 @@ fn a_failed_method_gives_a_failed_row_and_exit_status_one() {
         status.starts_with("status,,") && status.contains("failed: case 'flores2006_mobility'"),
         "{status}"
     );
+    // --force: the run above wrote this case's files, which a batch would otherwise keep.
     let out = jbearing(&[
         "batch",
         c,
         "--no-progress",
+        "--force",
         "--out",
         out_dir.to_str().unwrap(),
     ]);
