@@ -325,13 +325,23 @@ fn write_merged(
         let root = file.as_group().map_err(w.err("root group"))?;
         let names: Vec<String> = cases.iter().map(|c| c.name.clone()).collect();
         let case = w.string_coordinate(&root, "case", &names, "case name")?;
-        w.string_variable(
+        // CF auxiliary coordinates: xarray makes the swept keys coordinates of every variable
+        // along `case`, so `.set_xindex("radial_clearance_m").sel(radial_clearance_m=…)` works.
+        let coordinates = keys
+            .iter()
+            .map(|k| k.rsplit('.').next().unwrap_or(k))
+            .collect::<Vec<_>>()
+            .join(" ");
+        let status = w.string_variable(
             &root,
             "status",
             statuses,
             &case,
             "ok, failed: why, or missing: why",
         )?;
+        if !coordinates.is_empty() {
+            w.str_attr(&status, "coordinates", &coordinates)?;
+        }
         for (k, key) in keys.iter().enumerate() {
             let short = key.rsplit('.').next().unwrap_or(key);
             let values: Vec<f64> = cases
@@ -353,7 +363,10 @@ fn write_merged(
                     a[[i, 1]] = v[1];
                 }
             }
-            w.variable_2d(&root, name, &a, [&case, &method], units, long)?;
+            let ds = w.variable_2d(&root, name, &a, [&case, &method], units, long)?;
+            if !coordinates.is_empty() {
+                w.str_attr(&ds, "coordinates", &coordinates)?;
+            }
         }
         if !crank.is_empty() {
             let angle = w.coordinate(&root, "crank_angle", &crank, "degree", "crank angle")?;
@@ -368,7 +381,7 @@ fn write_merged(
                         a.row_mut(i).assign(&ndarray::ArrayView1::from(&v[..]));
                     }
                 }
-                w.variable_2d(
+                let ds = w.variable_2d(
                     &root,
                     &format!("{m}_{s}"),
                     &a,
@@ -376,6 +389,9 @@ fn write_merged(
                     units,
                     &format!("{m}: {long}"),
                 )?;
+                if !coordinates.is_empty() {
+                    w.str_attr(&ds, "coordinates", &coordinates)?;
+                }
             }
         }
         file.close().map_err(w.err("closing the file"))

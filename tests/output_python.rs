@@ -240,3 +240,50 @@ fn closed_form_group_opens_in_xarray() {
         assert!(out.contains(&line), "{line} not in\n{out}");
     }
 }
+
+/// A merged sweep (`jbearing batch` + `jbearing merge` on the cheap 3 × 2 sweep of the sweep
+/// tests) opens in xarray with the swept keys as coordinates of `case`: the heat-map example
+/// selects by a key's value, unstacks the factorial sweep into a grid and plots it.
+#[test]
+fn merged_sweep_selects_by_swept_key_and_plots() {
+    let python = python_env();
+    let dir = tempfile::tempdir().unwrap();
+    let case = common::sweep_case(dir.path());
+    let out_dir = dir.path().join("out");
+    let merged = dir.path().join("sweep.nc");
+    for args in [
+        vec![
+            "batch",
+            case.to_str().unwrap(),
+            "--no-progress",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ],
+        vec![
+            "merge",
+            out_dir.to_str().unwrap(),
+            "--out",
+            merged.to_str().unwrap(),
+        ],
+    ] {
+        run(
+            Command::new(env!("CARGO_BIN_EXE_jbearing")).args(&args),
+            &format!("jbearing {}", args[0]),
+        );
+    }
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/python/sweep_heatmap.py");
+    let png = dir.path().join("heat.png");
+    let out = run(
+        Command::new(&python)
+            .env("HDF5_USE_FILE_LOCKING", "FALSE")
+            .arg(&script)
+            .arg(&merged)
+            .arg("--out")
+            .arg(&png),
+        "examples/python/sweep_heatmap.py",
+    );
+    // Selecting clearance 30 µm leaves that clearance's two viscosities.
+    assert!(out.contains("radial_clearance_m = 3e-05: 2 cases"), "{out}");
+    let bytes = std::fs::read(&png).unwrap();
+    assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"));
+}

@@ -3,8 +3,11 @@
 //! merge equals the merge of one unsharded batch bit for bit; a re-run resumes (skips what
 //! exists) unless forced; a missing shard is listed, never dropped.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
+
+mod common;
+use common::sweep_case;
 
 fn jbearing(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_jbearing"))
@@ -17,59 +20,6 @@ fn jbearing(args: &[&str]) -> Output {
 
 fn text(b: &[u8]) -> String {
     String::from_utf8_lossy(b).into_owned()
-}
-
-/// A cheap swept case: Booker's mobility method on a small grooved bearing under a rotating
-/// load, 3 clearances × 2 viscosities = 6 cases.
-fn sweep_case(dir: &Path) -> PathBuf {
-    let p = dir.join("sweep.toml");
-    std::fs::write(
-        &p,
-        r#"version = 1
-name = "sw"
-
-[bearing]
-radius_m = 0.025
-length_m = 0.02
-radial_clearance_m = 4e-5
-
-[[grooves]]
-center_angle_deg = 90.0
-circumferential_length_m = 0.006
-axial_width_m = 0.006
-
-[lubricant]
-viscosity_pa_s = 0.02
-
-[operation]
-cycle_deg = 360.0
-crank_speed_rpm = 1800.0
-
-[load]
-crank_angle_deg = [0.0, 90.0, 180.0, 270.0]
-x_n = [-2000.0, -1500.0, -1000.0, -1500.0]
-y_n = [0.0, 500.0, 0.0, -500.0]
-
-[solver]
-mobility_model = "booker"
-
-[output]
-samples_per_cycle = 72
-plots = false
-
-[methods]
-rigorous = false
-mobility = true
-
-[sweep]
-combine = "factorial"
-[sweep.values]
-"bearing.radial_clearance_m" = [3e-5, 4e-5, 5e-5]
-"lubricant.viscosity_pa_s" = { start = 0.01, stop = 0.04, count = 2, spacing = "log" }
-"#,
-    )
-    .unwrap();
-    p
 }
 
 /// Every dataset of an HDF5 file (recursively): name → raw bytes of its values.
