@@ -1294,7 +1294,20 @@ fn solve_case_with(
         });
     }
     let summary = summary_rows(&methods);
-    let closed_form = crate::closed_form_report::report_table(case, &methods);
+    // With a heat balance the closed forms take the effective temperature the methods found
+    // (the rigorous one's when it ran), not the supply temperature.
+    let balanced = case.heat_balance.as_ref().and_then(|_| {
+        [Method::Rigorous, Method::Mobility].iter().find_map(|m| {
+            methods
+                .iter()
+                .find(|r| r.method == *m)
+                .and_then(|r| r.info_number(heat::EFFECTIVE_TEMPERATURE))
+        })
+    });
+    let closed_form = match balanced {
+        Some(t) => crate::closed_form_report::report_table(&case.at_film_temperature(t), &methods),
+        None => crate::closed_form_report::report_table(case, &methods),
+    };
     Ok(CaseReport {
         case_name: case.name.clone(),
         case_text: case.text.clone(),
