@@ -1,5 +1,5 @@
 //! Inverse-solver benches: one load cycle of a bearing the size of the compressor main bearing
-//! (design.md §7: L = 18.288 mm, R = 27.43 mm, c = 48.9 µm, 1800 rpm; μ = 0.02 Pa·s assumed)
+//! (docs/conventions.md §7: L = 18.288 mm, R = 27.43 mm, c = 48.9 µm, 1800 rpm; μ = 0.02 Pa·s assumed)
 //! under a synthetic compressor-like load (a 4 kN pulse once per turn on an 0.8 kN base, plus a
 //! 0.6 kN second-order side load), at the default step of 1° crank.
 //!

@@ -1,4 +1,4 @@
-//! Mobility-method benches: the Flores et al. example (seed 000, L/D = 0.4, 720° load cycle).
+//! Mobility-method benches: the Flores et al. example (\[Flores2006\], L/D = 0.4, 720° load cycle).
 //!
 //! - `mobility/flores_cycle_booker`: one 720° load cycle (721 samples with their performance)
 //!   from the start of the periodic orbit, Booker's closed-form mobility: the "mobility cycle".

@@ -8,7 +8,7 @@
 //!   compares.
 //! - `reynolds/cold_steady_lu/120x31`: the same with the sparse-LU oracle, for comparison.
 //! - `reynolds/viscosity/{constant,vogel_linear}/120x31`: the cold steady film of the first
-//!   bench (multigrid) with a constant viscosity and with seed 003's Vogel oil under a linear
+//!   bench (multigrid) with a constant viscosity and with \[Benasciutti2012\]'s Vogel oil under a linear
 //!   temperature rise 40 → 80 °C over the converging half (a viscosity field, α = 0), in one
 //!   run: issue 14 asks the field to cost ≤ 1.5× the constant.
 //! - `reynolds/warm_step/120x31`: one backward-Euler step of a grooved bearing whirling at

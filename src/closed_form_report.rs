@@ -1,8 +1,8 @@
 //! The closed-form static-equilibrium table of a case (`[closed_form]` in the case file,
 //! `jbearing closed-form CASE` on the command line).
 //!
-//! Each closed-form film model of `jbearing_solvers::closed_form` (seed 004 eqs. 3, 5–18;
-//! seed 000 eqs. 18, 20, 36–37) is put in static equilibrium F(ε, γ) + W = 0 (design.md §1)
+//! Each closed-form film model of `jbearing_solvers::closed_form` (\[Flores2009\] eqs. 3, 5–18;
+//! \[Flores2006\] eqs. 18, 20, 36–37) is put in static equilibrium F(ε, γ) + W = 0 (docs/conventions.md §1)
 //! under one constant load:
 //!
 //! ```text

@@ -7,7 +7,7 @@
 //!             slots in here when it is on main)           ─┘   summary rows from both
 //! ```
 //!
-//! Conventions are design.md §1's: the case's load is the force on the journal in the bearing
+//! Conventions are docs/conventions.md §1's: the case's load is the force on the journal in the bearing
 //! frame; the reported orbit is the journal centre in that frame (m).
 
 use std::path::{Path, PathBuf};
@@ -638,7 +638,7 @@ fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> 
     let k = snaps.len();
     let mut pressure = Array3::zeros((k, nt, nz));
     let mut content = Array3::zeros((k, nt, nz));
-    // h(θ) = c (1 − ε_x cos θ − ε_y sin θ) (design.md §1; reynolds/film.rs), the rigid journal's
+    // h(θ) = c (1 − ε_x cos θ − ε_y sin θ) (docs/conventions.md §1; reynolds/film.rs), the rigid journal's
     // gap at the snapshot's ε, the same along z.
     let mut thickness = Array3::zeros((k, nt, nz));
     for (i, s) in snaps.iter().enumerate() {
@@ -796,7 +796,7 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
                 &load,
             )
             .map_err(err)?,
-            "Booker short-bearing closed form (seed 000 eqs. 28-35)",
+            "Booker short-bearing closed form ([Flores2006] eqs. 28-35)",
         ),
         MobilityModelChoice::ExactShort => (
             solve_orbit(
@@ -810,7 +810,7 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
             "exact short-bearing mobility (inverted squeeze integrals)",
         ),
         MobilityModelChoice::Map => {
-            // Finite-length mobility (design.md §6, Goenka's construction): pure-squeeze
+            // Finite-length mobility (docs/conventions.md §6, Goenka's construction): pure-squeeze
             // solutions of our own Reynolds-condition film over (ε, load angle) for this L/D.
             let map = mobility_map(ld).map_err(|message| RunError::MobilityMap {
                 case: case.name.clone(),

@@ -1,13 +1,13 @@
 //! `jbearing validate`: the validation cases of `cases/` against the published values they come
-//! with, as one table. The full validation ladder (design.md §8) is the test suite of the
+//! with, as one table. The full validation ladder (docs/conventions.md §8) is the test suite of the
 //! `validation/` crate (`bash scripts/test.sh`); this command is the quick look a user can run
 //! from an installed binary.
 //!
 //! | case | quantity | reference (provenance) |
 //! |---|---|---|
-//! | flores2006_mobility | cycle-minimum h_min | ≥ 1.5 × 2.5 µm: the paper's safe-film rule (seed 000 §5, Fig. 9) |
-//! | flores2006_mobility | max ε | < 1: "within the bearing boundaries" (seed 000 Fig. 7a) |
-//! | benasciutti_jb1_steady | e, h_0, p_max | seed 003 Table 2, JB1 T_m const., α = 0 |
+//! | flores2006_mobility | cycle-minimum h_min | ≥ 1.5 × 2.5 µm: the paper's safe-film rule (\[Flores2006\] §5, Fig. 9) |
+//! | flores2006_mobility | max ε | < 1: "within the bearing boundaries" (\[Flores2006\] Fig. 7a) |
+//! | benasciutti_jb1_steady | e, h_0, p_max | \[Benasciutti2012\] Table 2, JB1 T_m const., α = 0 |
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -86,7 +86,7 @@ fn flores(report: &crate::output::CaseReport, rows: &mut Vec<Row>) {
             computed: h * 1e6,
             reference: 3.75,
             pass: Some(h * 1e6 >= 3.75),
-            note: "bound: ≥ 1.5 × 2.5 µm (seed 000 §5)",
+            note: "bound: ≥ 1.5 × 2.5 µm ([Flores2006] §5)",
         });
     }
     if let Some(e) = m.reduce(names::ECCENTRICITY_RATIO, Reduction::Max) {
@@ -97,14 +97,14 @@ fn flores(report: &crate::output::CaseReport, rows: &mut Vec<Row>) {
             computed: e,
             reference: 1.0,
             pass: Some(e < 1.0),
-            note: "bound: < 1 (seed 000 Fig. 7a)",
+            note: "bound: < 1 ([Flores2006] Fig. 7a)",
         });
     }
 }
 
 fn jb1(report: &crate::output::CaseReport, rows: &mut Vec<Row>) {
     let c = report.geometry.radial_clearance;
-    // The closed-form static equilibria (seed 004 models): reported, no bound — JB1 has
+    // The closed-form static equilibria ([Flores2009] models): reported, no bound — JB1 has
     // L/D = 0.6, neither short nor long.
     for model in ["short_gumbel", "long_gumbel", "pinkus_sternlicht"] {
         if let Some(e) = report
@@ -123,7 +123,7 @@ fn jb1(report: &crate::output::CaseReport, rows: &mut Vec<Row>) {
                 computed: e * c * 1e3,
                 reference: 0.2335,
                 pass: None,
-                note: "closed form, seed 003 Table 2",
+                note: "closed form, [Benasciutti2012] Table 2",
             });
         }
     }
@@ -144,7 +144,7 @@ fn jb1(report: &crate::output::CaseReport, rows: &mut Vec<Row>) {
                 computed: v,
                 reference: 0.2335,
                 pass: pass((v - 0.2335) / 0.2335, 0.01),
-                note: "seed 003 Table 2",
+                note: "[Benasciutti2012] Table 2",
             });
         }
         if let Some(h) = m.reduce(names::MIN_FILM_THICKNESS, Reduction::Mean) {
@@ -155,7 +155,7 @@ fn jb1(report: &crate::output::CaseReport, rows: &mut Vec<Row>) {
                 computed: h * 1e3,
                 reference: 0.0165,
                 pass: pass((h * 1e3 - 0.0165) / 0.0165, 0.05),
-                note: "seed 003 Table 2",
+                note: "[Benasciutti2012] Table 2",
             });
         }
         if let Some(p) = m.reduce(names::MAX_PRESSURE, Reduction::Mean) {
@@ -166,7 +166,7 @@ fn jb1(report: &crate::output::CaseReport, rows: &mut Vec<Row>) {
                 computed: p * 1e-6,
                 reference: 82.26,
                 pass: pass((p * 1e-6 - 82.26) / 82.26, 0.02),
-                note: "seed 003 Table 2",
+                note: "[Benasciutti2012] Table 2",
             });
         }
     }

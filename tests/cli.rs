@@ -155,7 +155,7 @@ fn run_writes_the_flores_case_files() {
     let out = run_into("cases/flores2006_mobility.toml", dir.path(), &[]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert_case_files(dir.path(), "flores2006_mobility");
-    // The summary CSV holds the mobility answer's h_min: seed 000's safe-film rule asks for
+    // The summary CSV holds the mobility answer's h_min: [Flores2006]'s safe-film rule asks for
     // ≥ 1.5 × 2.5 µm over the cycle, and the clearance bounds it above.
     let mut rdr =
         csv::Reader::from_path(dir.path().join("flores2006_mobility_summary.csv")).unwrap();
@@ -300,7 +300,7 @@ fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
     // short-bearing film (Newton on ε per time step) and Booker's mobility ODE (closed-form
     // short-bearing mobility, adaptive integration) solve the same short-bearing problem by
     // different routes; on the Flores case they must give nearly the same cycle. Booker's closed
-    // form approximates the short-bearing squeeze film (seed 000 eqs. 28-35) to a few per cent,
+    // form approximates the short-bearing squeeze film ([Flores2006] eqs. 28-35) to a few per cent,
     // hence 5 %.
     let dir = tempfile::tempdir().unwrap();
     let case = flores_short_bearing_case(dir.path(), "");
@@ -445,8 +445,8 @@ fn a_single_cycle_run_keeps_its_result() {
     assert_eq!(change.as_str(), "not assessed: a single cycle was run");
 }
 
-/// `jbearing closed-form` on the seed 004 simple bearing prints ε of each model; the values are
-/// the README's "Seed 004 Table 1 simple bearing" table (published closed forms, seed 004
+/// `jbearing closed-form` on the \[Flores2009\] simple bearing prints ε of each model; the values are
+/// the README's "\[Flores2009\] Table 1 simple bearing" table (published closed forms, \[Flores2009\]
 /// eqs. 6–13, checked against the paper's converged force F_Y = 31.275 N), to its 4 decimals.
 #[test]
 fn closed_form_prints_the_seed_004_equilibria() {
@@ -470,9 +470,9 @@ fn closed_form_prints_the_seed_004_equilibria() {
 
 #[test]
 fn closed_form_table_agrees_with_the_mobility_equilibrium_of_a_steady_load() {
-    // JB1 (seed 003) under its constant load: the mobility orbit (Booker's short-bearing
+    // JB1 ([Benasciutti2012]) under its constant load: the mobility orbit (Booker's short-bearing
     // mobility) settles at the static equilibrium; the closed-form short-bearing Gumbel model
-    // solves that equilibrium directly (seed 004). Two routes to the same short-bearing answer:
+    // solves that equilibrium directly ([Flores2009]). Two routes to the same short-bearing answer:
     // Booker's closed form approximates the Gumbel squeeze film to about 1 % in ε here, hence 1 %.
     let case = jbearing::case::Case::from_file(&root().join("cases/benasciutti_jb1_steady.toml"))
         .expect("JB1 case");

@@ -1,4 +1,4 @@
-//! The closed-form static-equilibrium table in the report and in `CASE.h5`: the seed 004 simple
+//! The closed-form static-equilibrium table in the report and in `CASE.h5`: the \[Flores2009\] simple
 //! bearing (`cases/flores2009_simple_bearing.toml`) solved in this process, its HDF5 file read
 //! back with hdf5-metno. The CLI side is in `tests/cli.rs`.
 //!
@@ -27,8 +27,8 @@ fn flores_case() -> Case {
     Case::from_file(&p).unwrap()
 }
 
-/// README "Closed-form models and Ritz", Seed 004 Table 1 simple bearing table: ε per model from
-/// the published closed forms (seed 004 eqs. 6–13; seed 000 eqs. 36–37), printed to 4 decimals.
+/// README "Closed-form models and Ritz", \[Flores2009\] Table 1 simple bearing table: ε per model from
+/// the published closed forms (\[Flores2009\] eqs. 6–13; \[Flores2006\] eqs. 36–37), printed to 4 decimals.
 const README_EPS: [(&str, f64); 5] = [
     ("long_sommerfeld", 0.0842),
     ("long_gumbel", 0.1673),
@@ -71,9 +71,9 @@ fn closed_form_group_reads_back_with_model_dimension_and_units() {
             "{name}: ε {} vs {want}",
             eps[k]
         );
-        // h_min = c (1 − ε), seed 004 eq. 42, c = 0.2 mm.
+        // h_min = c (1 − ε), [Flores2009] eq. 42, c = 0.2 mm.
         assert!((h_min[k] - 2.0e-4 * (1.0 - eps[k])).abs() < 1e-15);
-        // Force balance: F_y = −W_y = 31.275 N (seed 004 §7: converged F_Y = 31.275 N).
+        // Force balance: F_y = −W_y = 31.275 N ([Flores2009] §7: converged F_Y = 31.275 N).
         assert!((fy[k] - 31.275).abs() < 1e-9, "{name}: F_y {}", fy[k]);
         assert!(resid[k] < 1e-9);
         assert_eq!(status[k].as_str(), "ok");

@@ -201,7 +201,7 @@ fn python_example_plots_from_the_file() {
 }
 
 /// The `closed_form` group opens in xarray with `model` as its dimension and string coordinate
-/// (the seed 004 simple bearing's table on the writer fixture).
+/// (the \[Flores2009\] simple bearing's table on the writer fixture).
 #[test]
 fn closed_form_group_opens_in_xarray() {
     let python = python_env();

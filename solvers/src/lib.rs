@@ -1,7 +1,8 @@
 //! # jbearing-solvers
 //!
 //! The numerics of jbearing: dynamically loaded journal bearings with mass-conserving
-//! (Jakobsson–Floberg–Olsson) cavitation, after Yu & Sawicki (2002), the core seed paper.
+//! (Jakobsson–Floberg–Olsson) cavitation, after Yu & Sawicki (2002, \[YuSawicki2002\]), the core paper of the project (references:
+//! `docs/REFERENCES.md`; conventions: `docs/conventions.md`).
 //!
 //! This crate is pure numerics: SI units in, typed results out, no files and no printing.
 //! Parameters, results and errors follow one pattern: `XxxParams` in, `XxxInfo` out, `XxxError`
@@ -9,7 +10,7 @@
 //! runs reaches the caller through observer traits, never through a print.
 //!
 //! Modules
-//! - [`closed_form`]: the seeds' closed-form film models for a moving journal (short and long
+//! - [`closed_form`]: the closed-form film models of \[Flores2006\] and \[Flores2009\] for a moving journal (short and long
 //!   bearing, Sommerfeld and Gumbel films, Pinkus–Sternlicht) and their static equilibrium.
 //! - [`tridiagonal`]: the line kernels of the ADI sweeps: Thomas for Dirichlet lines and Yu &
 //!   Sawicki's modified Thomas for periodic (circumferential) lines.
@@ -17,12 +18,12 @@
 //!   load tables, synthetic loads, and the [`load::LoadHistory`] trait (W(t), ω_j, ω_b, p_feed).
 //! - [`inverse`]: the inverse dynamic-load problem (load history → journal orbit): Newton on the
 //!   eccentricity per time step, run-in, cycles to a periodic solution, per-step time series.
-//! - [`mechanism`]: the planar slider-crank of Flores et al. 2009 (seed 004) with a lubricated
+//! - [`mechanism`]: the planar slider-crank of Flores et al. 2009 (\[Flores2009\]) with a lubricated
 //!   rod–slider joint (closed-form or Reynolds film, Lankarani–Nikravesh contact when the film
 //!   breaks down), integrated in minimal coordinates; and its ideal-joint inverse dynamics.
 //! - [`mobility`]: Booker's mobility method (short-bearing closed forms, finite-length mobility
 //!   map, adaptive orbit integration to a periodic cycle, h_min / p_max / flow / power loss).
-//! - [`ritz`]: the Ritz method of seed 001 for the finite bearing with a film on 0 … π.
+//! - [`ritz`]: the Ritz method of \[Antonic2004\] for the finite bearing with a film on 0 … π.
 //! - [`slider_crank`]: a single-cylinder slider-crank compressor (polytropic cylinder cycle,
 //!   two-mass rod) giving the main- and rod-bearing loads, the rod's angular velocity and the rod
 //!   bearing's feed pressure through the crank drilling (the compressor cases of Yu & Sawicki).

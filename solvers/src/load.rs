@@ -3,7 +3,7 @@
 //! Shared by the mobility method ([`crate::mobility`]) and the inverse solver
 //! ([`crate::inverse`]).
 //!
-//! The load is the force the machine applies to the journal (design.md §1), in the bearing
+//! The load is the force the machine applies to the journal (docs/conventions.md §1), in the bearing
 //! frame, in newtons, periodic in time with period τ. Two traits:
 //!
 //! * [`PeriodicLoad`]: W(t) alone (what the mobility orbit needs).

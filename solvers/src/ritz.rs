@@ -1,9 +1,9 @@
-//! The Ritz method of Antonić, Nikolić & Torović (seed `001_5fc5e65ef34107a0`) for the finite
+//! The Ritz method of Antonić, Nikolić & Torović (\[Antonic2004\]) for the finite
 //! journal bearing whose film extends over θ = 0 … π (their "hypothesis III").
 //!
 //! # Problem
 //!
-//! Dimensionless Reynolds equation (seed 001 eq. 2, θ from the **maximum** film,
+//! Dimensionless Reynolds equation (\[Antonic2004\] eq. 2, θ from the **maximum** film,
 //! H = 1 + ε cos θ, Z = z/l ∈ [−½, ½], λ = r/l, Λ = 6ηωr²/(p₀c²)):
 //!
 //! ```text

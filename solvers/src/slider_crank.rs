@@ -1,10 +1,10 @@
 //! A single-cylinder slider-crank compressor: the loads on its main and connecting-rod bearings,
 //! the rod's angular velocity and the rod bearing's oil feed through the crank drilling.
 //!
-//! Yu & Sawicki (2002, seed `002_…`, Table II) give the two bearings of a commercial
+//! Yu & Sawicki (2002, \[YuSawicki2002\], Table II) give the two bearings of a commercial
 //! reciprocating air compressor but draw the load and feed histories only as figures (Figs. 3a–b,
 //! 4a–b). This module synthesizes those histories from the physics of the machine
-//! (design.md §7), so that the compressor cases are reproducible from stated numbers.
+//! (docs/conventions.md §7), so that the compressor cases are reproducible from stated numbers.
 //!
 //! # Kinematics (machine frame)
 //!
@@ -65,7 +65,7 @@
 //! Derivation of the signs: the gas pushes the piston towards the crank (−X), so
 //! S = F_g/cos β is positive near TDC. The link pushes the piston along +u and the big end along −u; the film of the rod
 //! bearing therefore pushes the crank pin along −u (plus the big end's inertia), and the load on
-//! the journal, the force that balances the film (design.md §1: F_film + W = 0), is +S u. The crank
+//! the journal, the force that balances the film (docs/conventions.md §1: F_film + W = 0), is +S u. The crank
 //! pin passes −S u on to the crankshaft, whose main bearings hold it together with the
 //! unbalanced centrifugal force of crank, big end and counterweight, (m_rot r + U_crank − U_cw) Ω²
 //! = −α m_rec r Ω² along the crank.
@@ -89,7 +89,7 @@
 //! ```
 //!
 //! While closed (f = 0) the rod film drains the drilling and its pressure falls to the cavitation
-//! pressure: the rod bearing's feed is cut off and it runs starved (design.md §2, the solver then
+//! pressure: the rod bearing's feed is cut off and it runs starved (docs/conventions.md §2, the solver then
 //! holds the groove cavitated at a given film fraction, 0.01 in Yu & Sawicki's Fig. 4).
 //! The overlap is linear in the covered length of the hole's diameter (a rectangular hole of the
 //! same width), a first-order model of a round hole's overlap area.

@@ -5,7 +5,7 @@
 //!
 //! A plain 360° journal bearing (no grooves, ambient pressure at both ends, p_amb = p_cav = 0),
 //! journal moving without rotation (ω̄ = 0) with squeeze velocity v = c u, u = dε/dt. The
-//! Reynolds equation (design.md §2 with g = 1, incompressible) in θ and ξ = z/R:
+//! Reynolds equation (docs/conventions.md §2 with g = 1, incompressible) in θ and ξ = z/R:
 //!
 //! ```text
 //!   ∂/∂θ (H³ ∂P/∂θ) + ∂/∂ξ (H³ ∂P/∂ξ) = −12 û·n(θ),      H = h/c = 1 − ε·n(θ),
@@ -16,7 +16,7 @@
 //! complementarity problem. A single instant has no film history, which the mass-conserving JFO
 //! model needs; mobility methods assume exactly this condition (Booker 1965; Goenka 1984 tabulated
 //! finite-element solutions of it). In the short-bearing limit the θ-lines decouple and the
-//! condition reduces to Gumbel's half film: P = 6 (û·n)⁺ ((L/D)² − ξ²)/H³ (seed `000_…`, eq. 18
+//! condition reduces to Gumbel's half film: P = 6 (û·n)⁺ ((L/D)² − ξ²)/H³ (\[Flores2006\], eq. 18
 //! with ω̄ = 0), which the tests use as the oracle.
 //!
 //! The dimensionless load (the load that balances the film, W = −F_film) is
@@ -469,7 +469,7 @@ mod tests {
     #[test]
     fn short_bearing_limit_is_gumbel() {
         // L/D = 0.05: the axial terms dominate by (D/L)² = 400, so the FD answer must approach
-        // the short-bearing Gumbel closed form Z = 2 (L/D)² J (seed 000 eqs. 18, 23–27); the
+        // the short-bearing Gumbel closed form Z = 2 (L/D)² J ([Flores2006] eqs. 18, 23–27); the
         // remaining difference is O((L/D)²) from the θ-flux plus the θ discretisation.
         let ld = 0.05;
         let f = film(ld, 288, 8);

@@ -5,7 +5,7 @@
 
 /// How a film advances from t^n to t^{n+1} = t^n + Δt_n.
 ///
-/// For the Reynolds film, with content c = h φ and net outflow D(c) of a node (design.md §2)
+/// For the Reynolds film, with content c = h φ and net outflow D(c) of a node (docs/conventions.md §2)
 /// (the short-bearing film applies the same difference formulas to ε, giving ε̇^{n+1}):
 ///
 /// ```text

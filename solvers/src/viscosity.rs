@@ -1,17 +1,17 @@
-//! Lubricant viscosity that depends on temperature and pressure: the Vogel–Barus law of seed
-//! 003 (Benasciutti et al., "Temperature and pressure effect on viscosity…", §2):
+//! Lubricant viscosity that depends on temperature and pressure: the Vogel–Barus law of
+//! \[Benasciutti2012\] (Benasciutti et al., "Temperature and pressure effect on viscosity…", §2):
 //!
 //! ```text
 //!   μ(T, p) = μ₀(T) · exp(α p),      μ₀(T) = a · exp(b / (T − c))        (Vogel; Barus)
 //! ```
 //!
-//! with T in °C, a in Pa·s, b and c in °C (K-sized degrees), α in 1/Pa (seed 003 quotes
+//! with T in °C, a in Pa·s, b and c in °C (K-sized degrees), α in 1/Pa (\[Benasciutti2012\] quotes
 //! α = 0.01 … 0.02 MPa⁻¹ = 1e-8 … 2e-8 Pa⁻¹) and p the gauge film pressure. Cavitated film
 //! (p = p_cav) is at the ambient-pressure viscosity.
 //!
 //! Temperature along the film ([`Temperature`]): a constant mean T_m (Raimondi–Boyd's
-//! assumption, seed 003 "T_m const."), or rising linearly from T_in at the supply to T_out
-//! over a span in the direction of the surface motion (seed 003 "T_in − T_out lin."; the seed
+//! assumption, \[Benasciutti2012\] "T_m const."), or rising linearly from T_in at the supply to T_out
+//! over a span in the direction of the surface motion (\[Benasciutti2012\] "T_in − T_out lin."; the paper
 //! does not say over which angle — its rows are reproduced with the rise across the converging
 //! half of the film, span π from h_max, see the README's Table 2):
 //!
@@ -112,7 +112,7 @@ impl Vogel {
         Ok(Self { a, b, c })
     }
 
-    /// The oil of seed 003's Table 2 ("a viscosity–temperature curve typical of oil ISO VG
+    /// The oil of \[Benasciutti2012\]'s Table 2 ("a viscosity–temperature curve typical of oil ISO VG
     /// 680"): the Vogel curve through the two viscosities the table prints — 0.1678 Pa·s at
     /// T_m = 60 °C (JB1) and 0.0655 Pa·s at T_m = 80 °C (JB2) — and ISO VG 680's nominal
     /// 680 mm²/s at 40 °C (ISO 3448) times a density of 890 kg/m³ (mineral oil at 40 °C),
@@ -144,7 +144,7 @@ impl Vogel {
 ///    Walther to within 1.1 % over 30 … 120 °C, the range of bearing films, and 4 % at
 ///    20 °C (unit test).
 ///
-/// Check against seed 003: its Table 2 oil ("typical of ISO VG 680") has 0.1678 Pa·s at 60 °C
+/// Check against \[Benasciutti2012\]: its Table 2 oil ("typical of ISO VG 680") has 0.1678 Pa·s at 60 °C
 /// and 0.0655 Pa·s at 80 °C; [`IsoViscosityGrade::Vg680`] gives 0.182 and 0.073 Pa·s (+9 %,
 /// +11 %), inside the spread of the grade (±10 % at 40 °C, VI 90 … 105).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -291,7 +291,7 @@ pub enum Temperature {
     },
     /// From `inlet` (°C) at the supply rising linearly to `outlet` (°C) `span` rad downstream,
     /// then `outlet` until the supply again: the oil heats up across the active film only.
-    /// Seed 003's "T_in − T_out linear" rows are reproduced with the supply at h_max and
+    /// \[Benasciutti2012\]'s "T_in − T_out linear" rows are reproduced with the supply at h_max and
     /// span = π (the rise across the converging half, from h_max to h_min; README, Table 2).
     LinearOverSpan {
         /// T at the supply, °C.
@@ -537,7 +537,7 @@ mod tests {
         assert_eq!(IsoViscosityGrade::from_name("SAE 30"), None);
     }
 
-    /// Seed 003's Table 2 oil is "typical of ISO VG 680": our VG 680 must lie within the spread
+    /// \[Benasciutti2012\]'s Table 2 oil is "typical of ISO VG 680": our VG 680 must lie within the spread
     /// of the grade — ±10 % in ν₄₀ (ISO 3448) plus the VI spread of mineral oils (VI 90 … 105
     /// moves ν at 60 … 80 °C by about ±5 %): 15 %.
     #[test]

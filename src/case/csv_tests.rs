@@ -94,7 +94,7 @@ fn an_unterminated_quote_and_a_short_row_are_named() {
 }
 
 /// `[lubricant.vogel]` with a film temperature: the rigorous film gets the Vogel model, every
-/// other method μ₀ at the mean temperature (seed 003's T_m = (T_in + T_out)/2 for a linear
+/// other method μ₀ at the mean temperature (\[Benasciutti2012\]'s T_m = (T_in + T_out)/2 for a linear
 /// rise), and the rise spans the converging half of the film unless `rise_span_deg` says
 /// otherwise.
 #[test]

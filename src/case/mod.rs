@@ -149,7 +149,7 @@ pub struct Methods {
 /// Which mobility model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MobilityModelChoice {
-    /// Booker's closed-form short-bearing mobility (seed 000 eqs. 28–35).
+    /// Booker's closed-form short-bearing mobility (\[Flores2006\] eqs. 28–35).
     Booker,
     /// The exact short-bearing mobility (inverted squeeze integrals).
     ExactShort,
@@ -1435,7 +1435,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
 /// likely). Each is about an order of magnitude beyond what journal bearings have:
 /// - clearance ratio c/R: usually 5e-4 … 3e-3 in machine bearings (Khonsari & Booser, *Applied
 ///   Tribology*, 3rd ed., §8: "c/R ≈ 0.001"), up to 2e-2 in the clearance joints of mechanisms
-///   (seed 004, Flores et al. 2009, Table 1); flagged outside 1e-5 … 5e-2, which still catches
+///   (\[Flores2009\], Flores et al. 2009, Table 1); flagged outside 1e-5 … 5e-2, which still catches
 ///   a length typed in mm for m (× 1000) and the other way round;
 /// - width ratio L/D: 0.2 … 1.5 in practice; flagged outside 0.05 … 3;
 /// - dynamic viscosity: 2e-3 (light oils hot) … 1 Pa·s (ISO VG 680 cold); flagged outside
@@ -1560,7 +1560,7 @@ struct ResolvedViscosity {
 
 /// The constant viscosity, or a Vogel law (`[lubricant.vogel]` or a named `oil`) with the film
 /// temperature given (`[lubricant.temperature]`: the model for the rigorous film and μ₀ at the
-/// mean temperature, T_m or (T_in + T_out)/2 as seed 003 defines it, for the methods that take
+/// mean temperature, T_m or (T_in + T_out)/2 as \[Benasciutti2012\] defines it, for the methods that take
 /// one viscosity) or found by a heat balance (`[lubricant.heat_balance]`: μ at the supply
 /// temperature until the balance replaces it by μ(T_eff)).
 fn resolve_viscosity(l: &LubricantSection, ctx: &Ctx<'_>) -> Result<ResolvedViscosity, CaseError> {

@@ -95,10 +95,10 @@ pub struct GrooveSection {
 pub struct LubricantSection {
     /// Constant viscosity; absent when `vogel` gives μ(T).
     pub viscosity_pa_s: Option<f64>,
-    /// Vogel's μ₀(T) = a exp(b / (T − c)) (seed 003).
+    /// Vogel's μ₀(T) = a exp(b / (T − c)) (\[Benasciutti2012\]).
     pub vogel: Option<VogelSection>,
     /// Barus pressure–viscosity coefficient α (1/Pa) of the rigorous film, with a Vogel law
-    /// (seed 003: 1e-8 … 2e-8); default 0.
+    /// (\[Benasciutti2012\]: 1e-8 … 2e-8); default 0.
     #[serde(default)]
     pub pressure_viscosity_coefficient_per_pa: f64,
     /// A named oil (ISO VG 32 … 680) whose Vogel curve gives μ(T): instead of `vogel`.
@@ -312,11 +312,11 @@ impl Default for MethodsSection {
     }
 }
 
-/// Mineral oil, ~1.5 GPa (design.md §2: order 1–2 GPa).
+/// Mineral oil, ~1.5 GPa (docs/conventions.md §2: order 1–2 GPa).
 fn default_bulk_modulus() -> f64 {
     1.5e9
 }
-/// Yu & Sawicki's cut-off groove film fraction (seed 002, Fig. 4: φ = 0.01).
+/// Yu & Sawicki's cut-off groove film fraction (\[YuSawicki2002\], Fig. 4: φ = 0.01).
 fn default_starved_film_fraction() -> f64 {
     0.01
 }

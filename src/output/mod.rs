@@ -27,7 +27,7 @@
 //! └── closed_form: Option<ClosedFormTable>  static equilibrium per closed-form model
 //! ```
 //!
-//! Conventions follow `shared/design.md` §1: SI units everywhere except the crank angle, which is
+//! Conventions follow `docs/conventions.md` §1: SI units everywhere except the crank angle, which is
 //! stored in degrees because that is how every plot and table in the field shows it; θ in radians
 //! from +x towards +y in the bearing frame; z from −L/2 to L/2; gauge pressures. The journal
 //! orbit is the pair of series [`names::ECCENTRICITY_X`], [`names::ECCENTRICITY_Y`] (journal

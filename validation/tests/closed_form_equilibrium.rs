@@ -1,11 +1,11 @@
-//! The simple journal bearing of Flores et al. 2009 (seed `004_cbd349ddb6ca28f9`, §7, Table 1,
+//! The simple journal bearing of Flores et al. 2009 (\[Flores2009\], §7, Table 1,
 //! Figs. 9–11): equilibrium of each closed-form model, side by side.
 //!
 //! Table 1: external load 30 N, bearing radius 10.0 mm, journal radius 9.8 mm, radial clearance
 //! 0.2 mm, length 40.0 mm, journal mass 0.13 kg, 500 rpm, 400 cP. The load acts downwards (Fig. 8)
 //! and the journal's weight adds to it; the paper states the fluid force converges to
 //! F_X = 0 (Fig. 10) and F_Y = 31.275 N (Fig. 11) = 30 N + 0.13 kg · 9.81 m/s². The forces use
-//! the journal radius R_j (seed 004 eqs. 6–17). The paper gives the equilibrium positions only
+//! the journal radius R_j (\[Flores2009\] eqs. 6–17). The paper gives the equilibrium positions only
 //! as plotted orbits (Fig. 9), so the test checks the force balance it states, the independent
 //! textbook attitude of the half-film models, the relations between the models, and prints the
 //! table quoted in the README.
@@ -16,7 +16,7 @@ use jbearing_solvers::closed_form::{
 };
 use std::f64::consts::PI;
 
-const EQUILIBRIUM_FORCE: f64 = 31.275; // N, seed 004 §7 text on Fig. 11
+const EQUILIBRIUM_FORCE: f64 = 31.275; // N, [Flores2009] §7 text on Fig. 11
 
 fn params() -> ClosedFormParams {
     ClosedFormParams {
@@ -79,7 +79,7 @@ fn flores_simple_bearing_equilibrium_of_every_model() {
         assert!((sol[&m].attitude_angle - want).abs() < 1e-10, "{m:?}");
     }
     // At rest the moving short film is the fixed half film, and Pinkus–Sternlicht is the
-    // Gumbel long bearing (k → ∞ in seed 004 eqs. 14–17).
+    // Gumbel long bearing (k → ∞ in [Flores2009] eqs. 14–17).
     for (a, b) in [
         (ShortGumbelMovingFilm, ShortGumbel),
         (PinkusSternlicht, LongGumbel),
@@ -146,7 +146,7 @@ fn transient(
     Ok((s, late_max))
 }
 
-/// The transient of seed 004 §7 (Figs. 9–11): the journal (0.13 kg) starts at the bearing centre
+/// The transient of \[Flores2009\] §7 (Figs. 9–11): the journal (0.13 kg) starts at the bearing centre
 /// at rest under the constant load; m ẍ = F_film(x, ẋ) + W. The paper: with the Gumbel films
 /// (and Pinkus–Sternlicht, "with lower damping") the journal reaches its equilibrium after a
 /// damped transient and the fluid force tends to F_X = 0, F_Y = 31.275 N; with the Sommerfeld
@@ -181,11 +181,11 @@ fn flores_transient_gumbel_films_settle_sommerfeld_films_keep_orbiting() {
         }
         late.insert(model, late_max);
     }
-    // "Lower damping" of Pinkus–Sternlicht than the Gumbel long bearing (seed 004 §7).
+    // "Lower damping" of Pinkus–Sternlicht than the Gumbel long bearing ([Flores2009] §7).
     assert!(late[&ClosedFormModel::PinkusSternlicht] > 10.0 * late[&ClosedFormModel::LongGumbel]);
 }
 
-/// Seed 004 eq. 16 read literally (prefactor ε̇ < 0 instead of |ε̇|, k > 0) flips the sign of the
+/// \[Flores2009\] eq. 16 read literally (prefactor ε̇ < 0 instead of |ε̇|, k > 0) flips the sign of the
 /// wedge force whenever the journal recedes. With it the same transient does not settle on the
 /// equilibrium the paper reports (Fig. 9e); with the |ε̇| reading of
 /// `closed_form::pinkus_sternlicht` it does (test above).

@@ -1,13 +1,13 @@
 //! The closed-form models and the Ritz pressure against the finite-difference Reynolds solver
 //! ([`jbearing_solvers::reynolds`]) in the limits where they are exact or comparable:
 //! - infinitely short bearing, Gumbel film, as L/D → 0 (FD: Reynolds/JFO rupture, film starting
-//!   at the widest gap, design.md §8) — the difference must fall like (L/D)²;
+//!   at the widest gap, docs/conventions.md §8) — the difference must fall like (L/D)²;
 //! - infinitely long bearing, full film (Sommerfeld), as L/D → ∞ (FD: cavitation suppressed by a
 //!   high ambient pressure, gauge-shifted back) — the mid-plane pressure must approach eq. 5;
-//! - the Ritz pressure of seed 001 eq. 14 against FD under the same assumptions (film on
+//! - the Ritz pressure of \[Antonic2004\] eq. 14 against FD under the same assumptions (film on
 //!   θ = 0 … π from the widest gap, P = 0 on both film edges and both bearing ends): the
 //!   difference is the 4-term trial function's error, stated here;
-//! - the seed 004 Table 1 bearing: the FD equilibrium beside the closed forms'.
+//! - the \[Flores2009\] Table 1 bearing: the FD equilibrium beside the closed forms'.
 
 use jbearing_solvers::closed_form::{
     ClosedFormModel, ClosedFormParams, JournalMotion, film_force, pressure, static_equilibrium,
@@ -165,7 +165,7 @@ fn ritz_pressure_against_fd_on_the_same_half_film() {
             n_z: 42,
         };
         // Two full-length lines held at p_line on h_max (θ = 0) and h_min (θ = π): the journal
-        // sits at ε along −x, so h = c (1 + ε cos θ) as in seed 001.
+        // sits at ε along −x, so h = c (1 + ε cos θ) as in [Antonic2004].
         let line = |th: f64| Groove {
             center_angle: th,
             center_z: 0.0,

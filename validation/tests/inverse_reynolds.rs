@@ -9,7 +9,7 @@
 //! second-generation film has no stalled step in these tests or the compressor cases.)
 //!
 //! Bearing and synthetic load: [`jbearing_validation::compressor_main`] (the compressor main
-//! bearing, design.md §7), shared with the inverse timing report. 4° steps keep most runs short.
+//! bearing, docs/conventions.md §7), shared with the inverse timing report. 4° steps keep most runs short.
 
 use jbearing_solvers::inverse::{
     InverseError, InverseParams, NoObserver, ReynoldsFilm, solve_inverse,

@@ -2,8 +2,8 @@
 //! constant load vs the closed-form steady solution, half-speed whirl load → collapse,
 //! symmetry, time-step convergence.
 //!
-//! Bearing: the compressor main bearing of Yu & Sawicki (design.md §7): L = 18.288 mm,
-//! R = 27.43 mm, c = 48.9 µm, 1800 rpm; μ = 0.02 Pa·s assumed (design.md §7: not given).
+//! Bearing: the compressor main bearing of Yu & Sawicki (docs/conventions.md §7): L = 18.288 mm,
+//! R = 27.43 mm, c = 48.9 µm, 1800 rpm; μ = 0.02 Pa·s assumed (docs/conventions.md §7: not given).
 //! L/D = 1/3, inside the short-bearing range.
 
 use jbearing_solvers::inverse::{

@@ -1,14 +1,14 @@
 //! Finite-length mobility from our own pure-squeeze film (issue 5, item 2).
 //!
 //! The film: `jbearing_solvers::squeeze_film` (finite differences, Reynolds condition P ≥ 0,
-//! the condition mobility methods assume; design.md §6, §8). The map: `mobility::MobilityMap`
+//! the condition mobility methods assume; docs/conventions.md §6, §8). The map: `mobility::MobilityMap`
 //! tabulated from it. What is shown here:
-//! 1. at small L/D the film approaches the short-bearing closed form (Gumbel; seed 000 eq. 18
+//! 1. at small L/D the film approaches the short-bearing closed form (Gumbel; \[Flores2006\] eq. 18
 //!    with ω̄ = 0), the gap falling like (L/D)²;
 //! 2. the default film grid is converged: within 0.5 % of a grid twice as fine, at second order;
 //! 3. at L/D = 1/2 the interpolated map reproduces direct pure-squeeze solves at points between
 //!    its nodes;
-//! 4. on the Flores et al. example (seed 000, L/D = 0.4) the finite-length map gives a thinner
+//! 4. on the Flores et al. example (\[Flores2006\], L/D = 0.4) the finite-length map gives a thinner
 //!    cycle-minimum film than the short-bearing theory: the short bearing drops the
 //!    circumferential flow that relieves the squeeze pressure, so it overestimates the film's
 //!    load capacity (at L/D = 0.4 the film above is ~50 % below the short-bearing load).
@@ -129,7 +129,7 @@ fn map_at_half_length_reproduces_direct_squeeze_solves() {
 
 #[test]
 fn flores_example_with_the_finite_length_map_runs_thinner_than_the_short_bearing() {
-    // Seed 000 Table 1 and the Bouldin & Berker load (see `jbearing_validation::flores2006`).
+    // [Flores2006] Table 1 and the Bouldin & Berker load (see `jbearing_validation::flores2006`).
     let (bearing, load, p) = (
         flores2006::bearing(),
         flores2006::load(),

@@ -1,8 +1,8 @@
-//! The demonstrative example of Flores, Pimenta Claro & Ambrósio (seed `000_dbfe48423bfc45ce`,
+//! The demonstrative example of Flores, Pimenta Claro & Ambrósio (\[Flores2006\],
 //! §5): a short bearing (L/D = 0.4) under the Bouldin & Berker engine-bearing load, by Booker's
 //! short-bearing mobility.
 //!
-//! Data (seed 000 Table 1, with its two slips corrected — see
+//! Data (\[Flores2006\] Table 1, with its two slips corrected — see
 //! `data/reference/flores2006_load.md`): L = 25.40 mm, D = 63.50 mm, c = 35.56 µm, μ = 4.16 cP,
 //! 2000 rpm (fixed bearing, ω̄ = ω/2), ε⁰ = 0.1, φ⁰ = 1.5 rad; load from Fig. 6
 //! (`flores2006_load.csv`, kN over 720° of crank), positive along the reference direction of the

@@ -1,6 +1,6 @@
 //! The finite-length mobility map used in a real orbit: a map tabulated from the short-bearing
 //! squeeze film (the provider that a Reynolds-based film will replace) must reproduce the orbit
-//! of the exact short-bearing mobility on the Flores et al. example (seed 000 §5).
+//! of the exact short-bearing mobility on the Flores et al. example (\[Flores2006\] §5).
 //!
 //! The map is within ~1e-4 of the exact mobility (unit test in `solvers/src/mobility/map.rs`).
 //! Near the load line M^ζ ∝ (1 − ζ)^{5/2}, so a relative mobility error δ moves the film 1 − ζ by

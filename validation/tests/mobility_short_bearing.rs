@@ -1,7 +1,7 @@
 //! Short-bearing mobility against an independent integration of the short-bearing pressure, and
 //! against Ocvirk's steady closed form.
 //!
-//! Oracle: the film force of the short-bearing pure-squeeze pressure (seed 000 eq. 18)
+//! Oracle: the film force of the short-bearing pure-squeeze pressure (\[Flores2006\] eq. 18)
 //!
 //! ```text
 //!   p(θ, z) = max(0, 6 μ (v·n) (L²/4 − z²) / h³),   h = c (1 − ε·n),  F_film = −∫∫ p n R dθ dz

@@ -1,4 +1,4 @@
-//! Reynolds solver against closed forms (design.md §8 rung 2):
+//! Reynolds solver against closed forms (docs/conventions.md §8 rung 2):
 //! - long bearing (L/D = 20, cavitation suppressed by a high ambient pressure) against the full
 //!   Sommerfeld solution at the mid-plane;
 //! - short bearing (L/D = 0.1, film starting at the widest gap) against Ocvirk's short-bearing

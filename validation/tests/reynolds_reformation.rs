@@ -1,4 +1,4 @@
-//! Film reformation with mass balance (design.md §8 rung 1, issue item 6):
+//! Film reformation with mass balance (docs/conventions.md §8 rung 1, issue item 6):
 //! - steady: a feed groove downstream of a cavity, where the film re-forms; supply = side
 //!   leakage to 1e-8;
 //! - dynamic: a journal squeezing away from the wall and back (backward Euler steps): the film

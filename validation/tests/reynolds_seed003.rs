@@ -1,4 +1,4 @@
-//! Seed `003_aa488eb78871ee6c` Table 2, rigid case "JB1 T_m const., α = 0": the steady load
+//! \[Benasciutti2012\] Table 2, rigid case "JB1 T_m const., α = 0": the steady load
 //! → eccentricity solve (Newton) for the bearing of its Table 1.
 //!
 //! Table 1: shaft d = 500 mm, support D = 500.5 mm (c = 0.25 mm), L = 300 mm, F = 3600 kN,
@@ -6,7 +6,7 @@
 //! p_max = 82.26 MPa at θ_pmax = 15.62°, h_0 = 0.0165 mm at θ_h0 = 26.29° (angles from the load
 //! line). The paper sets negative pressures to zero (Reynolds / Swift–Stieber film with the film
 //! starting at the widest gap): our supply line at h_max with JFO cavitation is the same problem
-//! (design.md §8). The paper's film is a *plane model* p(θ) (its eq. 1; its results sit next to
+//! (docs/conventions.md §8). The paper's film is a *plane model* p(θ) (its eq. 1; its results sit next to
 //! R&B's L/D → ∞ row, e = 0.2352 mm): the finite L = 300 mm bearing gives e ≈ 0.240 mm
 //! (ε ≈ 0.96, as the Raimondi–Boyd L/D = 1/2 and 1 tables bracket at S = 0.0076). So the plane
 //! model is reproduced as a bearing 100 diameters long carrying the same load per unit length
@@ -67,7 +67,7 @@ fn jb1(bulk_modulus: f64) -> (f64, f64, f64, f64, SteadyLoadInfo) {
     jb(bulk_modulus, None, 240, 101)
 }
 
-/// The seed's bearing (Table 1) as the plane model (see the module docs), with the constant
+/// The paper's bearing (Table 1) as the plane model (see the module docs), with the constant
 /// viscosity 0.1678 Pa·s or `model`, on an `n_theta` × `n_z` grid.
 fn jb(
     bulk_modulus: f64,
@@ -112,7 +112,7 @@ fn jbearing_wrap(a: f64) -> f64 {
     }
 }
 
-/// One row of seed 003 Table 2: configuration, temperature along the film, α (1/MPa), and the
+/// One row of \[Benasciutti2012\] Table 2: configuration, temperature along the film, α (1/MPa), and the
 /// published e (mm), p_max (MPa), θ_pmax (deg), h_0 (mm), θ_h0 (deg).
 struct Row {
     name: &'static str,
@@ -224,16 +224,16 @@ const ROWS: [Row; 8] = [
     },
 ];
 
-/// The eight rigid rows of Table 2 with the Vogel–Barus viscosity (the seed's ISO VG 680 oil,
+/// The eight rigid rows of Table 2 with the Vogel–Barus viscosity (the paper's ISO VG 680 oil,
 /// `Vogel::seed003_iso_vg_680`: through the table's two viscosities and VG 680 at 40 °C), the
 /// plane model as for JB1 above, β = 1.5e13 Pa (incompressible, as the paper).
 ///
-/// "T_in − T_out lin." is not defined further in the seed (over which angle T rises); the rows
+/// "T_in − T_out lin." is not defined further in the paper (over which angle T rises); the rows
 /// are reproduced with T rising linearly across the converging half of the film, from T_in at
 /// the supply (h_max) to T_out at h_min, and T_out beyond (`Temperature::LinearOverSpan`,
 /// span π). Two other readings were measured and rejected (2026-11-24): a rise over the whole
 /// turn from the supply gives e −5.8 % and p_max −30 % on JB1; a rise over the whole turn from
-/// h_min (the θ = 0 of the seed's h = c − e cos θ) gives p_max +37 % and θ_h0 −12° on JB1.
+/// h_min (the θ = 0 of the paper's h = c − e cos θ) gives p_max +37 % and θ_h0 −12° on JB1.
 ///
 /// Tolerances: e within 1.5 % and both angles within 2° on every row (the JB1 row's
 /// tolerances above); p_max within 5 % on the four T_m rows and within 10 % on the four linear
@@ -391,7 +391,7 @@ fn swift_stieber_long_bearing(mu: f64, load_per_length: f64) -> (f64, f64, f64, 
     )
 }
 
-/// Table 2's two R&B rows ("L/D ~ ∞", read by the seed from Raimondi & Boyd's charts at the
+/// Table 2's two R&B rows ("L/D ~ ∞", read by the paper from Raimondi & Boyd's charts at the
 /// rows' Sommerfeld numbers) as a check of the L/D → ∞ limit, with an independent long-bearing
 /// solution between them and our plane model.
 ///
@@ -403,10 +403,10 @@ fn swift_stieber_long_bearing(mu: f64, load_per_length: f64) -> (f64, f64, f64, 
 /// 2. R&B's JB1 row (S = 0.00786): e within 1.5 %, p_max within 5 %, θ_pmax within 2° (the JB1
 ///    tolerances) — both solutions reproduce it.
 /// 3. R&B's JB2 row (S = 0.00298) is not reproduced and cannot be: its p_max, 205.5 MPa, is
-///    50 % above both the independent long-bearing solution and the seed's own numerical row
-///    (136.92 MPa), and its θ_pmax (6.6°) 3.5° from both; the seed itself attributes this to
+///    50 % above both the independent long-bearing solution and the paper's own numerical row
+///    (136.92 MPa), and its θ_pmax (6.6°) 3.5° from both; the paper itself attributes this to
 ///    reading R&B's charts at a Sommerfeld number below their range. Asserted: the long-bearing
-///    p_max is within 5 % of the seed's numerical 136.92 MPa and more than 30 % below the R&B
+///    p_max is within 5 % of the paper's numerical 136.92 MPa and more than 30 % below the R&B
 ///    reading; e (0.2447 mm) is still within 1.5 %.
 #[test]
 fn raimondi_boyd_long_bearing_rows() {

@@ -1,4 +1,4 @@
-//! Reynolds solver against the finite-bearing tables (design.md §8 rung 3): Butenschön (1976)
+//! Reynolds solver against the finite-bearing tables (docs/conventions.md §8 rung 3): Butenschön (1976)
 //! rotation tables for B/d = 1, 1/2, 1/3 and Raimondi & Boyd (1958) for L/D = 1, 1/2
 //! (`data/reference/*.csv`, provenance in the `.md` beside each). Both tables solve the problem
 //! "the film starts at the widest gap": a full-length axial supply line at ambient pressure on
@@ -125,7 +125,7 @@ fn raimondi_boyd_table() {
             let phi = sol.attitude_angle.to_degrees();
             let qs = (sol.side_leakage[0] + sol.side_leakage[1]) / (R * C * n * l);
             // Friction variable (R/c) f, f = (|T_journal| / R) / W. Our torque shears only the
-            // oil fraction φ of a cavitated cell (design.md §5); Raimondi & Boyd shear the full
+            // oil fraction φ of a cavitated cell (docs/conventions.md §5); Raimondi & Boyd shear the full
             // film over 360°, so their convention adds μU(1 − φ)/h over the cavitated cells.
             let rcf_oil = (R / C) * (sol.friction_torque_journal.abs() / R) / sol.load_capacity;
             let rcf = (R / C)

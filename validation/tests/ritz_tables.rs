@@ -1,4 +1,4 @@
-//! Ritz tables T1–T5 of Antonić, Nikolić & Torović (seed `001_5fc5e65ef34107a0`, §3 "Results"):
+//! Ritz tables T1–T5 of Antonić, Nikolić & Torović (\[Antonic2004\], §3 "Results"):
 //! C_1 … C_4 per unit Λ for λ = r/l ∈ {0, 0.25, 0.5, 0.75, 1} and ε ∈ {0.7, 0.5, 0.3}, reproduced
 //! with our assembly of eq. 12 ([`jbearing_solvers::ritz`]). Data and provenance:
 //! `data/reference/ritz_antonic_tables.csv` / `.md`.

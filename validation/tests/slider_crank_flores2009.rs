@@ -1,4 +1,4 @@
-//! Seed 004 (Flores et al. 2009) §8: the slider-crank with a lubricated rod–slider joint
+//! \[Flores2009\] (Flores et al. 2009) §8: the slider-crank with a lubricated rod–slider joint
 //! ([`jbearing_solvers::mechanism`]).
 //!
 //! - the ideal-joint reactions and driving moment against an independent computation:
@@ -186,7 +186,7 @@ fn ideal_joint_reactions_match_an_independent_newton_euler_solution() {
     println!("worst relative difference from Newton–Euler: {worst:.2e}");
     // The differences' accuracy (see newton_euler) is ~1e-9 of the peaks.
     assert!(worst < 1e-7, "{worst}");
-    // Seed 004 Fig. 13: the ideal joint force peaks near 2.7 kN... the crank moment near 140
+    // [Flores2009] Fig. 13: the ideal joint force peaks near 2.7 kN... the crank moment near 140
     // N m at 5000 rpm — sanity of the units (the figure is not digitised: 10 %).
     assert!((scale_f - 2720.0).abs() < 272.0 && (scale_m - 138.6).abs() < 14.0);
 }
@@ -389,7 +389,7 @@ fn outputs_satisfy_the_constraints_and_the_energy_balance() {
 
 #[test]
 fn flores_main_case_as_the_paper_states() {
-    // c = 0.2 mm, μ = 400 cP, Pinkus–Sternlicht film (seed 004 Figs. 13–15), three turns.
+    // c = 0.2 mm, μ = 400 cP, Pinkus–Sternlicht film ([Flores2009] Figs. 13–15), three turns.
     let s = run(0.2e-3, 0.4, 3);
     let id = ideal(3, 360);
     let n = 360;
@@ -477,7 +477,7 @@ fn flores_main_case_as_the_paper_states() {
 
 #[test]
 fn clearance_and_viscosity_study() {
-    // Seed 004 Figs. 16–21, Pinkus–Sternlicht film, two turns each.
+    // [Flores2009] Figs. 16–21, Pinkus–Sternlicht film, two turns each.
     let id = ideal(2, 360);
     let peak_ideal = id
         .loads
@@ -635,11 +635,11 @@ fn closed_form_films_against_the_reynolds_film() {
     }
 }
 
-/// The paper's own formulation (seed 004 §6, eqs. 39–41) as an independent check of the
+/// The paper's own formulation (\[Flores2009\] §6, eqs. 39–41) as an independent check of the
 /// minimal-coordinate equations and of the Radau5 integration: Cartesian coordinates of the
 /// three bodies (9), seven ideal-joint and driving constraints with Lagrange multipliers,
 /// Baumgarte stabilisation, the same Pinkus–Sternlicht film as a force element between rod and
-/// slider (seed 004 eqs. 21–34), integrated with a classical RK4 at 1e-7 s (explicit: the
+/// slider (\[Flores2009\] eqs. 21–34), integrated with a classical RK4 at 1e-7 s (explicit: the
 /// film's fastest time constant here is ~0.5 µs, |λ Δt| ≈ 0.2, inside RK4's stability region).
 #[test]
 fn cartesian_baumgarte_formulation_gives_the_same_motion() {

@@ -1,5 +1,5 @@
 //! Static equilibrium of the closed-form models: the journal position at which the film force
-//! of a journal at rest (ε̇ = γ̇ = 0) balances a constant load, F(ε, γ) + W = 0 (design.md §1).
+//! of a journal at rest (ε̇ = γ̇ = 0) balances a constant load, F(ε, γ) + W = 0 (docs/conventions.md §1).
 //!
 //! At rest every model gives F_r = −a(ε)|ω|, F_t = b(ε)ω in the line-of-centres frame, so the
 //! magnitude |F|(ε) depends on ε only and the direction on γ only:
@@ -38,7 +38,7 @@ pub struct EquilibriumSolution {
     /// Film force on the journal at the solution (N); equals −W to the solver tolerance. For
     /// ω < 0 it is the mirrored model's force (see the module docs).
     pub film_force: [f64; 2],
-    /// h_min = c (1 − ε) (m) (seed 004 eq. 42).
+    /// h_min = c (1 − ε) (m) (\[Flores2009\] eq. 42).
     pub min_film_thickness: f64,
     /// Sommerfeld number S = μ N L D / |W| (R/c)², N = |ω|/2π (rev/s).
     pub sommerfeld_number: f64,

@@ -6,7 +6,7 @@
 //!
 //! As in [`crate::inverse::ShortBearingFilm`]: the state holds ε^n and ε̇^n; a step to the trial
 //! ε^{n+1} takes ε̇^{n+1} = (ε^{n+1} − ε^n)/dt (backward Euler) or 2(ε^{n+1} − ε^n)/dt − ε̇^n
-//! (Crank–Nicolson, the default). The [`JournalMotion`] follows from (ε, ε̇) by seed 004
+//! (Crank–Nicolson, the default). The [`JournalMotion`] follows from (ε, ε̇) by \[Flores2009\]
 //! eqs. 25–32 with ω = ω_j − ω_b.
 //!
 //! # Outputs
@@ -16,7 +16,7 @@
 //! - peak pressure: maximum of [`super::pressure`] at z = 0 over 720 angles. Pinkus–Sternlicht
 //!   publishes no pressure: its peak is reported as 0 (documented, not a NaN);
 //! - cavitated fraction: 0 for the full films, ½ for the half films;
-//! - side leakage: short models, the axial flux at z = ±L/2 of the pressure of seed 004 eq. 3
+//! - side leakage: short models, the axial flux at z = ±L/2 of the pressure of \[Flores2009\] eq. 3
 //!   over the film region, (c L R/4) ∫ [ω' ε sin ψ − 2ε̇ cos ψ] dψ per end (signed, net); long
 //!   models and Pinkus–Sternlicht have no axial flow (0);
 //! - friction torques and power loss as for the inverse solver's analytic film:
@@ -149,7 +149,7 @@ mod tests {
     use super::*;
     use crate::inverse::{ShortBearingFilm, ShortBearingParams};
 
-    /// The moving short half film is the inverse solver's analytic film (seed 000 eqs. 18, 36–37):
+    /// The moving short half film is the inverse solver's analytic film (\[Flores2006\] eqs. 18, 36–37):
     /// two implementations of the same physics must agree on every output.
     #[test]
     fn moving_short_film_matches_the_inverse_solvers_analytic_film() {

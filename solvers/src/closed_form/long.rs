@@ -6,7 +6,7 @@
 //!   ∂p/∂ψ = (12 μ R²/c²) [ε̇ sin ψ + ½ ω' ε cos ψ + K] / (1 + ε cos ψ)³
 //! ```
 //!
-//! **Full film** (Sommerfeld, ψ ∈ 0 … 2π, p periodic and p(0) = 0; seed 004 eq. 5, seed 000
+//! **Full film** (Sommerfeld, ψ ∈ 0 … 2π, p periodic and p(0) = 0; \[Flores2009\] eq. 5, \[Flores2006\]
 //! eq. 20 with φ̇ − ω̄ = −ω'/2):
 //!
 //! ```text
@@ -25,14 +25,14 @@
 //!   − (8 ε̇ √(1 − ε²) / (π (2 + ε²))) · ∫₀^ψ dt/(1 + ε cos t)³      (Sommerfeld substitution)
 //! ```
 //!
-//! This film is the one whose forces seed 004 prints as eqs. 12–13 (the test integrates it).
+//! This film is the one whose forces \[Flores2009\] prints as eqs. 12–13 (the test integrates it).
 //!
 //! Forces in units of μ L R³ / c²:
 //!
 //! ```text
-//!   full (seed 004 eqs. 10–11):  F_r = −12 π ε̇ / (1 − ε²)^{3/2}
+//!   full ([Flores2009] eqs. 10–11):  F_r = −12 π ε̇ / (1 − ε²)^{3/2}
 //!                                F_t =  12 π ε ω' / ((2 + ε²)(1 − ε²)^{1/2})
-//!   half (seed 004 eqs. 12–13):  F_r = −12 [ε² ω' / ((2 + ε²)(1 − ε²))
+//!   half ([Flores2009] eqs. 12–13):  F_r = −12 [ε² ω' / ((2 + ε²)(1 − ε²))
 //!                                          + ε̇ (π/2 − 8/(π (2 + ε²))) / (1 − ε²)^{3/2}]
 //!                                F_t =  12 [π ε ω' / (2 (2 + ε²)(1 − ε²)^{1/2})
 //!                                          + 2 ε ε̇ / ((2 + ε²)(1 − ε²))]
@@ -57,7 +57,7 @@ fn pressure_scale(params: &ClosedFormParams) -> f64 {
     6.0 * params.viscosity * rc * rc
 }
 
-/// Full-film pressure (Pa) at the seeds' angle ψ (seed 004 eq. 5).
+/// Full-film pressure (Pa) at the papers' angle ψ (\[Flores2009\] eq. 5).
 pub fn full_film_pressure(params: &ClosedFormParams, motion: &JournalMotion, psi: f64) -> f64 {
     pressure_scale(params) * full_film_dimensionless(motion, psi)
 }
@@ -75,7 +75,7 @@ pub fn half_film_pressure(params: &ClosedFormParams, motion: &JournalMotion, psi
         * (full_film_dimensionless(motion, psi) + k * sommerfeld_integral_3(eps, psi))
 }
 
-/// (F_r, F_t) of the full film (seed 004 eqs. 10–11).
+/// (F_r, F_t) of the full film (\[Flores2009\] eqs. 10–11).
 pub fn full_film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f64; 2] {
     let eps = motion.eccentricity_ratio;
     let s = 1.0 - eps * eps;
@@ -86,7 +86,7 @@ pub fn full_film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f6
     ]
 }
 
-/// (F_r, F_t) of the half film (seed 004 eqs. 12–13).
+/// (F_r, F_t) of the half film (\[Flores2009\] eqs. 12–13).
 pub fn half_film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f64; 2] {
     let eps = motion.eccentricity_ratio;
     let ed = motion.eccentricity_ratio_rate;

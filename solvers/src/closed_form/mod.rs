@@ -1,12 +1,12 @@
-//! Closed-form film models of the seeds for a moving journal: the infinitely short and the
+//! Closed-form film models of \[Flores2006\] and \[Flores2009\] for a moving journal: the infinitely short and the
 //! infinitely long bearing under Sommerfeld's (full film) and Gumbel's (half film) conditions,
 //! the short bearing with the moving positive-pressure half film, and the Pinkus–Sternlicht
 //! dynamic forces of the long bearing; their static equilibrium under a given load.
 //!
 //! # Frame and state
 //!
-//! Bearing frame of design.md §1: θ from +x towards +y, journal centre e = c ε (cos γ, sin γ),
-//! film h = c − e·n, n = (cos θ, sin θ). The seeds measure their angle from the **maximum** film
+//! Bearing frame of docs/conventions.md §1: θ from +x towards +y, journal centre e = c ε (cos γ, sin γ),
+//! film h = c − e·n, n = (cos θ, sin θ). The papers measure their angle from the **maximum** film
 //! (h = c(1 + ε cos ψ)); here that angle is
 //!
 //! ```text
@@ -15,56 +15,56 @@
 //!
 //! The state of the journal is [`JournalMotion`]: ε, ε̇, γ, γ̇ and the relative surface speed
 //! ω = ω_j − ω_b (bearing frame). In the line-of-centres frame the Reynolds equation reads
-//! (design.md §2 with U = Rω, ∂h/∂t = c ε̇ cos ψ + c ε γ̇ sin ψ):
+//! (docs/conventions.md §2 with U = Rω, ∂h/∂t = c ε̇ cos ψ + c ε γ̇ sin ψ):
 //!
 //! ```text
 //!   (1/R²) ∂/∂ψ (h³ ∂p/∂ψ) + ∂/∂z (h³ ∂p/∂z) = 12 μ c [ε̇ cos ψ − ½ (ω − 2γ̇) ε sin ψ]
 //! ```
 //!
-//! so the wedge always enters through ω' = ω − 2γ̇ (seed 004 eqs. 3–18; seed 000 eq. 16 with
+//! so the wedge always enters through ω' = ω − 2γ̇ (\[Flores2009\] eqs. 3–18; \[Flores2006\] eq. 16 with
 //! ω̄ = ω/2 and φ̇ = γ̇).
 //!
 //! # Forces
 //!
-//! The film force on the journal F = −∫∫ p n R dθ dz has the components (seed 004 Fig. 2, eq. 19)
+//! The film force on the journal F = −∫∫ p n R dθ dz has the components (\[Flores2009\] Fig. 2, eq. 19)
 //!
 //! ```text
 //!   F_r = F·ê = R ∫∫ p cos ψ dψ dz     (along the line of centres, bearing → journal)
 //!   F_t = F·t̂ = R ∫∫ p sin ψ dψ dz     (t̂ = ê turned 90° counter-clockwise)
-//!   F_x = F_r cos γ − F_t sin γ,   F_y = F_r sin γ + F_t cos γ                (seed 004 eq. 19)
+//!   F_x = F_r cos γ − F_t sin γ,   F_y = F_r sin γ + F_t cos γ                ([Flores2009] eq. 19)
 //! ```
 //!
 //! # Models ([`ClosedFormModel`])
 //!
 //! ```text
 //!   model                    pressure                           region        forces
-//!   ShortSommerfeld          seed 004 eq. 3 / seed 000 eq. 18    0 … 2π        seed 004 eqs. 6–7
-//!   ShortGumbel              seed 004 eq. 3                      0 … π         seed 004 eqs. 8–9
-//!   ShortGumbelMovingFilm    seed 000 eq. 18                     ψ_i … ψ_i+π   seed 000 eqs. 21–22, 36–37
-//!   LongSommerfeld           seed 004 eq. 5 / seed 000 eq. 20    0 … 2π        seed 004 eqs. 10–11
-//!   LongGumbel               eq. 5 with p(0) = p(π) = 0          0 … π         seed 004 eqs. 12–13
-//!   PinkusSternlicht         (not given)                         moving π film seed 004 eqs. 14–18
+//!   ShortSommerfeld          [Flores2009] eq. 3 / [Flores2006] eq. 18    0 … 2π        [Flores2009] eqs. 6–7
+//!   ShortGumbel              [Flores2009] eq. 3                      0 … π         [Flores2009] eqs. 8–9
+//!   ShortGumbelMovingFilm    [Flores2006] eq. 18                     ψ_i … ψ_i+π   [Flores2006] eqs. 21–22, 36–37
+//!   LongSommerfeld           [Flores2009] eq. 5 / [Flores2006] eq. 20    0 … 2π        [Flores2009] eqs. 10–11
+//!   LongGumbel               eq. 5 with p(0) = p(π) = 0          0 … π         [Flores2009] eqs. 12–13
+//!   PinkusSternlicht         (not given)                         moving π film [Flores2009] eqs. 14–18
 //! ```
 //!
 //! Misprints found by integrating the pressures (tests in [`short`], [`long`]) and how they are
 //! corrected here:
-//! - seed 004 eq. 6 prints (1 − ε²)^{3/2}; the integral of eq. 3 over 2π gives (1 − ε²)^{5/2}
+//! - \[Flores2009\] eq. 6 prints (1 − ε²)^{3/2}; the integral of eq. 3 over 2π gives (1 − ε²)^{5/2}
 //!   (also twice the squeeze part of eq. 8, as it must be for a symmetric squeeze pressure).
-//! - seed 004 eq. 3 omits the factor c in "2 ε̇ cos θ" (dimensions; c ε̇ = ė).
+//! - \[Flores2009\] eq. 3 omits the factor c in "2 ε̇ cos θ" (dimensions; c ε̇ = ė).
 //! - The Gumbel long bearing of eqs. 12–13 is **not** eq. 5 set to zero on π … 2π: eq. 5's
 //!   squeeze term is not zero at ψ = π. Eqs. 12–13 are the forces of the long-bearing film on
-//!   0 … π with p(0) = p(π) = 0 (Ritz's "hypothesis III", seed 001 eq. 3a), whose squeeze part
+//!   0 … π with p(0) = p(π) = 0 (Ritz's "hypothesis III", \[Antonic2004\] eq. 3a), whose squeeze part
 //!   carries an extra term −8 ε̇ √(1−ε²)/(π(2+ε²)) · ∫₀^ψ dt/(1+ε cos t)³ (see [`long`]).
-//! - seed 004 eq. 15 prints (1 − ε²)^{3/2}, eq. 17 (1 − ε²)^{1/2}; only the latter tends to the
+//! - \[Flores2009\] eq. 15 prints (1 − ε²)^{3/2}, eq. 17 (1 − ε²)^{1/2}; only the latter tends to the
 //!   Gumbel force eq. 13 as ε̇ → 0 (k → ∞). Both use ^{1/2} here.
-//! - seed 004 eq. 16 as printed has a prefactor ε̇ (< 0) that flips the sign of the wedge term
+//! - \[Flores2009\] eq. 16 as printed has a prefactor ε̇ (< 0) that flips the sign of the wedge term
 //!   4kε²: F_r would jump from −12ε²ω'/((2+ε²)(1−ε²)) to its negative as ε̇ crosses 0. Read with
 //!   |ε̇| (as the two cases ε̇ > 0 / ε̇ < 0 suggest) the force is continuous and the squeeze part
 //!   opposes the motion in both cases; that reading is used (see [`pinkus_sternlicht`]).
 //!
 //! [`ClosedFormFilm`] wraps any model as a film of the inverse solver (load history → orbit).
 //!
-//! Fixed-region Gumbel models (ShortGumbel, LongGumbel) keep the seeds' region 0 … π, which is
+//! Fixed-region Gumbel models (ShortGumbel, LongGumbel) keep the papers' region 0 … π, which is
 //! the converging half only for ω' > 0; [`static_equilibrium`] mirrors the problem for ω < 0.
 
 pub mod equilibrium;
@@ -83,7 +83,7 @@ use thiserror::Error;
 /// Geometry and lubricant of the bearing, SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClosedFormParams {
-    /// Journal radius R (m) (seed 004 uses R_j).
+    /// Journal radius R (m) (\[Flores2009\] uses R_j).
     pub radius: f64,
     /// Bearing length L (m).
     pub length: f64,
@@ -128,7 +128,7 @@ impl ClosedFormParams {
     }
 }
 
-/// The journal's position and velocity in the bearing frame (seed 004 §5).
+/// The journal's position and velocity in the bearing frame (\[Flores2009\] §5).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JournalMotion {
     /// Eccentricity ratio ε = e/c, 0 ≤ ε < 1.
@@ -159,7 +159,7 @@ impl JournalMotion {
         }
     }
 
-    /// From the eccentricity-ratio vector ε = (ε_x, ε_y) and its rate (seed 004 eqs. 25–32).
+    /// From the eccentricity-ratio vector ε = (ε_x, ε_y) and its rate (\[Flores2009\] eqs. 25–32).
     /// At ε = 0 the line of centres is taken along ε̇ (or +x when ε̇ = 0) and γ̇ = 0.
     pub fn from_cartesian(eps: [f64; 2], eps_rate: [f64; 2], relative_speed: f64) -> Self {
         let e = eps[0].hypot(eps[1]);
@@ -192,7 +192,7 @@ impl JournalMotion {
         self.relative_speed - 2.0 * self.line_of_centres_rate
     }
 
-    /// The seeds' angle ψ ∈ [0, 2π) from the maximum film for the bearing-frame angle θ.
+    /// The papers' angle ψ ∈ [0, 2π) from the maximum film for the bearing-frame angle θ.
     pub fn angle_from_max_film(&self, theta: f64) -> f64 {
         (theta - self.line_of_centres_angle - PI).rem_euclid(TAU)
     }
@@ -224,7 +224,7 @@ pub struct FilmForce {
     pub radial: f64,
     /// F_t perpendicular to it (ê turned 90° counter-clockwise).
     pub tangential: f64,
-    /// (F_x, F_y) in the bearing frame (seed 004 eq. 19).
+    /// (F_x, F_y) in the bearing frame (\[Flores2009\] eq. 19).
     pub cartesian: [f64; 2],
 }
 
@@ -242,23 +242,23 @@ impl FilmForce {
 /// The closed-form film models (see the module docs for equations and regions).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ClosedFormModel {
-    /// Infinitely short bearing, full film (Sommerfeld conditions), seed 004 eqs. 3, 6–7.
+    /// Infinitely short bearing, full film (Sommerfeld conditions), \[Flores2009\] eqs. 3, 6–7.
     ShortSommerfeld,
-    /// Infinitely short bearing, half film on ψ ∈ (0, π) (Gumbel), seed 004 eqs. 3, 8–9.
+    /// Infinitely short bearing, half film on ψ ∈ (0, π) (Gumbel), \[Flores2009\] eqs. 3, 8–9.
     ShortGumbel,
     /// Infinitely short bearing, positive-pressure half film ψ ∈ (ψ_i, ψ_i + π) that moves with
-    /// the squeeze velocity, seed 000 eqs. 18, 36–37.
+    /// the squeeze velocity, \[Flores2006\] eqs. 18, 36–37.
     ShortGumbelMovingFilm,
-    /// Infinitely long bearing, full film (Sommerfeld), seed 004 eqs. 5, 10–11.
+    /// Infinitely long bearing, full film (Sommerfeld), \[Flores2009\] eqs. 5, 10–11.
     LongSommerfeld,
     /// Infinitely long bearing, film on ψ ∈ (0, π), p = 0 at both ends (Gumbel), eqs. 12–13.
     LongGumbel,
-    /// Pinkus & Sternlicht's long bearing with moving film ends, seed 004 eqs. 14–18.
+    /// Pinkus & Sternlicht's long bearing with moving film ends, \[Flores2009\] eqs. 14–18.
     PinkusSternlicht,
 }
 
 impl ClosedFormModel {
-    /// All models, in the order of seed 004 Fig. 9 (plus the moving short film).
+    /// All models, in the order of \[Flores2009\] Fig. 9 (plus the moving short film).
     pub const ALL: [ClosedFormModel; 6] = [
         ClosedFormModel::LongSommerfeld,
         ClosedFormModel::LongGumbel,
@@ -468,7 +468,7 @@ mod tests {
     fn cartesian_state_round_trip() {
         let m = JournalMotion::from_cartesian([0.3, -0.4], [0.2, 0.1], 50.0);
         assert!((m.eccentricity_ratio - 0.5).abs() < 1e-15);
-        // ε̇ = ε·ε̇/|ε|, γ̇ = (ε × ε̇)/|ε|² (seed 004 eqs. 29, 32).
+        // ε̇ = ε·ε̇/|ε|, γ̇ = (ε × ε̇)/|ε|² ([Flores2009] eqs. 29, 32).
         assert!((m.eccentricity_ratio_rate - (0.06 - 0.04) / 0.5).abs() < 1e-15);
         assert!((m.line_of_centres_rate - (0.3 * 0.1 + 0.4 * 0.2) / 0.25).abs() < 1e-14);
         // h_min lies along ε: ψ = π there.

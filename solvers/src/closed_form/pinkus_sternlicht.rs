@@ -1,5 +1,5 @@
 //! Pinkus & Sternlicht's dynamic forces of the infinitely long bearing with a moving film
-//! (seed 004 eqs. 14–18, after Pinkus & Sternlicht 1961).
+//! (\[Flores2009\] eqs. 14–18, after Pinkus & Sternlicht 1961).
 //!
 //! For a journal moving radially the film ends are not at ψ = 0 and π; Pinkus & Sternlicht find
 //! them and give the forces in closed form with
@@ -39,7 +39,7 @@ pub fn k_parameter(motion: &JournalMotion) -> f64 {
     ((1.0 - eps * eps) * ((wp / (2.0 * ed)).powi(2) + 1.0 / (eps * eps))).sqrt()
 }
 
-/// (F_r, F_t) of seed 004 eqs. 14–17 (with the corrections of the module docs).
+/// (F_r, F_t) of \[Flores2009\] eqs. 14–17 (with the corrections of the module docs).
 pub fn film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f64; 2] {
     let eps = motion.eccentricity_ratio;
     let ed = motion.eccentricity_ratio_rate;

@@ -1,7 +1,7 @@
 //! The infinitely short bearing (Dubois & Ocvirk) for a moving journal.
 //!
 //! Dropping the circumferential flow term of the Reynolds equation (see [`super`]) and taking
-//! p = 0 at z = ±L/2 (seed 004 eq. 3 with the missing c restored; seed 000 eq. 18):
+//! p = 0 at z = ±L/2 (\[Flores2009\] eq. 3 with the missing c restored; \[Flores2006\] eq. 18):
 //!
 //! ```text
 //!   p(ψ, z) = 3 μ (L²/4 − z²) / (c² (1 + ε cos ψ)³) · [ ω' ε sin ψ − 2 ε̇ cos ψ ],   ω' = ω − 2γ̇
@@ -10,15 +10,15 @@
 //! Forces on the journal, in units of μ R L³ / c² (F_r along ê, F_t along t̂, see [`super`]):
 //!
 //! ```text
-//!   Sommerfeld, ψ ∈ (0, 2π)  (seed 004 eqs. 6–7, eq. 6 with the exponent 5/2):
+//!   Sommerfeld, ψ ∈ (0, 2π)  ([Flores2009] eqs. 6–7, eq. 6 with the exponent 5/2):
 //!     F_r = −π ε̇ (1 + 2ε²) / (1 − ε²)^{5/2}
 //!     F_t =  π ε ω' / (2 (1 − ε²)^{3/2})
-//!   Gumbel, ψ ∈ (0, π)  (seed 004 eqs. 8–9):
+//!   Gumbel, ψ ∈ (0, π)  ([Flores2009] eqs. 8–9):
 //!     F_r = −[π ε̇ (1 + 2ε²)/(1 − ε²)^{1/2} + 2 ε² ω'] / (2 (1 − ε²)²)
 //!     F_t =  ε [4 ε̇ + (π/2) ω' (1 − ε²)^{1/2}] / (2 (1 − ε²)²)
 //! ```
 //!
-//! Gumbel with the moving half film (seed 000 eqs. 36–37): the bracket is A sin(ψ − ψ_i) with
+//! Gumbel with the moving half film (\[Flores2006\] eqs. 36–37): the bracket is A sin(ψ − ψ_i) with
 //! ψ_i = atan2(2ε̇, ε ω'), so p > 0 exactly on ψ ∈ (ψ_i, ψ_i + π). Wedge plus squeeze is then
 //! Booker's pure squeeze with the velocity u = v/c = (ε̇, −ε ω'/2) in the frame of ε, and the
 //! force is F = −(μ R L³/c²) J(u) with the exact integrals J of
@@ -28,7 +28,7 @@ use super::{ClosedFormParams, JournalMotion};
 use crate::mobility::short_bearing_squeeze_integral;
 use std::f64::consts::PI;
 
-/// Pressure (Pa) at the seeds' angle ψ (from the maximum film) and z, unclipped (full film).
+/// Pressure (Pa) at the papers' angle ψ (from the maximum film) and z, unclipped (full film).
 pub fn pressure(params: &ClosedFormParams, motion: &JournalMotion, psi: f64, z: f64) -> f64 {
     let eps = motion.eccentricity_ratio;
     let c = params.radial_clearance;
@@ -39,7 +39,7 @@ pub fn pressure(params: &ClosedFormParams, motion: &JournalMotion, psi: f64, z: 
     3.0 * params.viscosity * axial * bracket / (c * c * w * w * w)
 }
 
-/// (F_r, F_t) of the full film (seed 004 eqs. 6–7).
+/// (F_r, F_t) of the full film (\[Flores2009\] eqs. 6–7).
 pub fn full_film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f64; 2] {
     let eps = motion.eccentricity_ratio;
     let s = 1.0 - eps * eps;
@@ -51,7 +51,7 @@ pub fn full_film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f6
     ]
 }
 
-/// (F_r, F_t) of the half film ψ ∈ (0, π) (seed 004 eqs. 8–9).
+/// (F_r, F_t) of the half film ψ ∈ (0, π) (\[Flores2009\] eqs. 8–9).
 pub fn half_film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f64; 2] {
     let eps = motion.eccentricity_ratio;
     let ed = motion.eccentricity_ratio_rate;
@@ -65,7 +65,7 @@ pub fn half_film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f6
     ]
 }
 
-/// (F_r, F_t) of the moving positive-pressure half film (seed 000 eqs. 18, 21–22, 36–37).
+/// (F_r, F_t) of the moving positive-pressure half film (\[Flores2006\] eqs. 18, 21–22, 36–37).
 pub fn moving_half_film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f64; 2] {
     let eps = motion.eccentricity_ratio;
     let u = [
@@ -77,7 +77,7 @@ pub fn moving_half_film_force(params: &ClosedFormParams, motion: &JournalMotion)
     [-scale * j[0], -scale * j[1]]
 }
 
-/// The start ψ_i of the positive-pressure half film (seed 000 eq. 36, quadrant-correct), in
+/// The start ψ_i of the positive-pressure half film (\[Flores2006\] eq. 36, quadrant-correct), in
 /// [0, 2π); the film ends at ψ_i + π (eq. 37).
 pub fn moving_film_start(motion: &JournalMotion) -> f64 {
     (2.0 * motion.eccentricity_ratio_rate)

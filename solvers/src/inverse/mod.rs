@@ -2,16 +2,16 @@
 //!
 //! # The equation
 //!
-//! The journal is massless (design.md §1): at every instant the film force balances the load
+//! The journal is massless (docs/conventions.md §1): at every instant the film force balances the load
 //! that the machine applies to the journal,
 //!
 //! ```text
-//!   r(ε^{n+1}) = F_film(ε^{n+1}; film history up to t^n) + W(t^{n+1}) = 0        (design.md §4)
+//!   r(ε^{n+1}) = F_film(ε^{n+1}; film history up to t^n) + W(t^{n+1}) = 0        (docs/conventions.md §4)
 //! ```
 //!
 //! The film force depends on ε^{n+1} directly (film thickness h = c − e·n) and through the time
 //! derivative of the film content (squeeze), so each time step is a 2×2 nonlinear system in the
-//! eccentricity ratio vector ε = e/c. Yu & Sawicki (2002, seed 002, "inverse solution": Newton on
+//! eccentricity ratio vector ε = e/c. Yu & Sawicki (2002, \[YuSawicki2002\], "inverse solution": Newton on
 //! the journal centre position per time step) solve it by Newton's method; so do we:
 //!
 //! ```text
@@ -25,7 +25,7 @@
 //!
 //! The exact Jacobian is kept across iterates and time steps while each iterate along it
 //! reduces |r| at least 4× (chord steps) and taken afresh at the current iterate otherwise
-//! (design.md §4: finite differences across a switching film are meaningless). The discrete
+//! (docs/conventions.md §4: finite differences across a switching film are meaningless). The discrete
 //! JFO film of the second generation is continuous in ε (`crate::reynolds`, module docs), so
 //! Newton converges to the tolerance on every step of the validation and compressor cases;
 //! a step that still cannot (iteration limit, or no descent on a fresh Jacobian) is accepted at
@@ -55,7 +55,7 @@
 //! [`FilmModel`] is the one thing the inverse solver needs from a film: step from a state at t^n
 //! to a trial ε^{n+1} and return the film force and the outputs. Two implementations:
 //! - [`ShortBearingFilm`]: Ocvirk's short bearing with Gumbel's half film and a moving journal
-//!   (seed 000 eqs. 18–22; seed 004), analytic, with the crate's [`TimeScheme`] (BDF2 default)
+//!   (\[Flores2006\] eqs. 18–22; \[Flores2009\]), analytic, with the crate's [`TimeScheme`] (BDF2 default)
 //!   discretisation of the journal velocity.
 //! - [`ReynoldsFilm`]: the universal (mass-conserving) Reynolds solver [`crate::reynolds`].
 

@@ -3,13 +3,13 @@
 //!
 //! # The film
 //!
-//! Short-bearing Reynolds equation with wedge and squeeze (seed 000 eq. 17, Dubois & Ocvirk),
+//! Short-bearing Reynolds equation with wedge and squeeze (\[Flores2006\] eq. 17, Dubois & Ocvirk),
 //! bearing frame, surface speed U = R(ω_j − ω_b), ω̄ = (ω_j − ω_b)/2:
 //!
 //! ```text
 //!   ∂/∂z (h³/12μ ∂p/∂z) = (U/2R) ∂h/∂θ + ∂h/∂t = −v·n,    v = ė − ω̄ × e,  n = (cos θ, sin θ)
-//!   p(θ, z) = 6μ (v·n)/h³ · (L²/4 − z²)       where v·n > 0, else 0 (Gumbel)  (seed 000 eq. 18)
-//!   F_film = −∫∫ p n R dθ dz = −(μ R L³/c²) J(ε, u),   u = v/c = ε̇ − ω̄ × ε   (seed 000 eq. 20–22)
+//!   p(θ, z) = 6μ (v·n)/h³ · (L²/4 − z²)       where v·n > 0, else 0 (Gumbel)  ([Flores2006] eq. 18)
+//!   F_film = −∫∫ p n R dθ dz = −(μ R L³/c²) J(ε, u),   u = v/c = ε̇ − ω̄ × ε   ([Flores2006] eq. 20–22)
 //! ```
 //!
 //! J is the closed-form squeeze integral of [`crate::mobility::short_bearing_squeeze_integral`]
@@ -36,7 +36,7 @@
 //! pressure (3μL²/2c²)(u·n)/(1 − ε·n)³ (720 samples, parabolic refinement). Side leakage: the
 //! axial flux at z = ±L/2 is (v·n) L/2 per unit circumference over the pressurised half, so each
 //! end passes R L c |u| (Q = 2RLc|u| in total). Cavitated fraction: the unpressurised half of
-//! Gumbel's film, 1/2 when v ≠ 0. No grooves (empty supply flow). Power loss (design.md §5):
+//! Gumbel's film, 1/2 when v ≠ 0. No grooves (empty supply flow). Power loss (docs/conventions.md §5):
 //! Couette part 2π μ R³ L (ω_j − ω_b)²/(c √(1−ε²)) over the full 360° plus the squeeze part
 //! W·v = −F·(c u) (Booker 1965). Friction torques (shear stress −μU/h ∓ (h/2)∂p/∂x on the
 //! journal/bearing surface, pressure term integrated by parts):

@@ -1,5 +1,5 @@
 //! Dry contact of the journal on the bearing wall and the lubricated → dry transition
-//! (seed 004 §4, eq. 20; the contact law of its ref. 3, Flores & Ambrósio 2004).
+//! (\[Flores2009\] §4, eq. 20; the contact law of its ref. 3, Flores & Ambrósio 2004).
 //!
 //! # Contact law (Lankarani–Nikravesh 1990)
 //!
@@ -15,11 +15,11 @@
 //! impact with that c_e. K is the stiffness Flores & Ambrósio use for a revolute clearance joint
 //! (the sphere-in-sphere Hertz constant with the two radii of the joint); n = 3/2 likewise.
 //! F_N acts on the journal towards the bearing centre (−ê); friction at the contact is not
-//! modelled (the seed's example is lubricated; a Coulomb law is a later extension).
+//! modelled (the example of \[Flores2009\] is lubricated; a Coulomb law is a later extension).
 //!
-//! # Transition (seed 004 eq. 20, in film-thickness terms)
+//! # Transition (\[Flores2009\] eq. 20, in film-thickness terms)
 //!
-//! The seed blends the lubricated force into the dry one over an eccentricity band e₀ once the
+//! \[Flores2009\] blends the lubricated force into the dry one over an eccentricity band e₀ once the
 //! film reaches the "boundary layer", and evaluates the lubricated force with a clearance
 //! enlarged by e₁ so that it stays finite in the band. Here the film model uses the true
 //! clearance c (so the lubricated results do not depend on the contact settings), and the dry
@@ -28,11 +28,11 @@
 //! ```text
 //!   δ = e − (c − h_b)                       (penetration of the boundary layer)
 //!   s = clamp(δ / e₀, 0, 1)                 (blend weight, e₀ < h_b)
-//!   F = (1 − s) F_film + s F_dry            (seed 004 eq. 20 with c_seed = c − h_b, e₁ = h_b)
+//!   F = (1 − s) F_film + s F_dry            ([Flores2009] eq. 20 with c_seed = c − h_b, e₁ = h_b)
 //! ```
 //!
 //! F is continuous in e (F_dry(0) = 0, and s is continuous); the film is evaluated only for
-//! s < 1, where ε = e/c ≤ 1 − (h_b − e₀)/c < 1. This is eq. 20 with the seed's contact clearance
+//! s < 1, where ε = e/c ≤ 1 − (h_b − e₀)/c < 1. This is eq. 20 with the paper's contact clearance
 //! c − h_b and its e₁ = h_b.
 
 use super::MechanismError;
@@ -61,8 +61,8 @@ pub struct ContactParams {
 
 impl Default for ContactParams {
     /// Steel on steel (E = 207 GPa, ν = 0.3, the values of Flores & Ambrósio 2004), c_e = 0.9,
-    /// h_b = 1 µm (a ground pin and a honed eye: composite roughness well below the seed's
-    /// "safe" film of ≈ 3 µm), e₀ = 0.5 µm, δ̇⁻ ≥ 1 mm/s. Seed 004 gives no values for e₀, e₁
+    /// h_b = 1 µm (a ground pin and a honed eye: composite roughness well below the paper's
+    /// "safe" film of ≈ 3 µm), e₀ = 0.5 µm, δ̇⁻ ≥ 1 mm/s. \[Flores2009\] gives no values for e₀, e₁
     /// ("must be chosen carefully"): these are assumptions.
     fn default() -> Self {
         Self {
@@ -152,7 +152,7 @@ pub fn lankarani_nikravesh(
     (stiffness * penetration.powf(1.5) * (1.0 + damping * penetration_rate)).max(0.0)
 }
 
-/// Blend weight s = clamp(δ/e₀, 0, 1) of seed 004 eq. 20.
+/// Blend weight s = clamp(δ/e₀, 0, 1) of \[Flores2009\] eq. 20.
 pub fn blend_weight(penetration: f64, blend_width: f64) -> f64 {
     (penetration / blend_width).clamp(0.0, 1.0)
 }

@@ -1,9 +1,9 @@
-//! Planar slider-crank with a lubricated revolute joint (seed 004, Flores et al. 2009, §§3–8):
+//! Planar slider-crank with a lubricated revolute joint (\[Flores2009\], Flores et al. 2009, §§3–8):
 //! the forward problem — the crank is driven at constant speed, the journal of the rod–slider
 //! joint moves in its clearance under the film (and, when the film breaks down, the contact)
 //! force, and the joint forces, the driving moment, the journal orbit and h_min come out.
 //!
-//! # The mechanism (seed 004 Fig. 12, Table 2)
+//! # The mechanism (\[Flores2009\] Fig. 12, Table 2)
 //!
 //! ```text
 //!            A (ideal pin, crank ↔ rod)
@@ -17,12 +17,12 @@
 //! Journal centre on the rod B_j = A + L₃ u, u = (cos φ₃, sin φ₃); bearing centre in the slider
 //! B_b = (x₄, 0). The slider does not rotate, so the bearing frame is the fixed frame and the
 //! journal's speed relative to the bearing is ω = φ̇₃ (the journal could as well be the pin in the
-//! slider: the closed forms depend on ω − 2γ̇ only, seed 004 eqs. 3–18, which is the same either
-//! way). Eccentricity (seed 004 eqs. 21–32): e = B_j − B_b, ε = e/c.
+//! slider: the closed forms depend on ω − 2γ̇ only, \[Flores2009\] eqs. 3–18, which is the same either
+//! way). Eccentricity (\[Flores2009\] eqs. 21–32): e = B_j − B_b, ε = e/c.
 //!
 //! # Formulation: minimal coordinates instead of Cartesian coordinates with Baumgarte
 //!
-//! Seed 004 §6 writes each body in Cartesian coordinates, keeps the ideal joints as algebraic
+//! \[Flores2009\] §6 writes each body in Cartesian coordinates, keeps the ideal joints as algebraic
 //! constraints with Lagrange multipliers (eq. 39) and stabilises their drift with Baumgarte's
 //! feedback (eq. 41, with constants α, β to be tuned). With a driven crank, two ideal pins, a
 //! translational joint and one clearance joint the mechanism has exactly two degrees of freedom
@@ -52,7 +52,7 @@
 //!   ë_x = Ä_x − L₃ (sin φ₃ φ̈₃ + cos φ₃ φ̇₃²) − ẍ₄,   ë_y = Ä_y + L₃ (cos φ₃ φ̈₃ − sin φ₃ φ̇₃²)
 //! ```
 //!
-//! (the generalized forces of F are (∂e/∂q)ᵀ F, the transport of seed 004 eqs. 33–34). The
+//! (the generalized forces of F are (∂e/∂q)ᵀ F, the transport of \[Flores2009\] eqs. 33–34). The
 //! reactions follow from Newton–Euler on each body:
 //!
 //! ```text
@@ -72,11 +72,11 @@
 //! # Joint force
 //!
 //! - film: any closed form of [`crate::closed_form`] (default Pinkus–Sternlicht, the model of
-//!   seed 004 §8; eqs. 6–19) with ω = φ̇₃, or the mass-conserving Reynolds film
+//!   \[Flores2009\] §8; eqs. 6–19) with ω = φ̇₃, or the mass-conserving Reynolds film
 //!   [`crate::reynolds`] through [`crate::inverse::ReynoldsFilm`];
-//! - dry contact and the transition: [`contact`] (Lankarani–Nikravesh, seed 004 eq. 20).
+//! - dry contact and the transition: [`contact`] (Lankarani–Nikravesh, \[Flores2009\] eq. 20).
 //!
-//! Left out, as in seed 004 (eqs. 33–34 transport the film force only): the film's viscous
+//! Left out, as in \[Flores2009\] (eqs. 33–34 transport the film force only): the film's viscous
 //! friction torque on the journal, 2πμR³Lφ̇₃/(c√(1−ε²)) ≈ 0.1 N m for Table 3 against a
 //! driving moment of 139 N m, and friction in the dry contact.
 //!
@@ -129,7 +129,7 @@
 //! journal orbit, h_min and the blend weight, and the contact events; [`MechanismInfo`]: step
 //! counts, extremes and the periodicity change between the last two turns. The run starts at
 //! t = 0 with the journal in the bearing centre and the bodies moving as in the ideal mechanism
-//! (seed 004 §7: "initially, the journal and bearing centres coincide").
+//! (\[Flores2009\] §7: "initially, the journal and bearing centres coincide").
 
 pub mod contact;
 mod slider_crank;
@@ -153,7 +153,7 @@ pub enum JointFilm {
     Reynolds(Box<ReynoldsParams>),
 }
 
-/// A lubricated revolute joint (seed 004 Table 3).
+/// A lubricated revolute joint (\[Flores2009\] Table 3).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LubricatedJointParams {
     /// Bearing radius R_b (m).
@@ -171,13 +171,13 @@ pub struct LubricatedJointParams {
 }
 
 impl LubricatedJointParams {
-    /// Seed 004 Table 3: R_b 10.0 mm, R_j 9.8 mm (c 0.2 mm), L 40 mm, μ 400 cP, with the
+    /// \[Flores2009\] Table 3: R_b 10.0 mm, R_j 9.8 mm (c 0.2 mm), L 40 mm, μ 400 cP, with the
     /// Pinkus–Sternlicht film of §8 and the default contact settings.
     pub fn flores2009() -> Self {
         Self::with_clearance(0.2e-3, 0.4)
     }
 
-    /// The Table 3 joint with another clearance and viscosity (the study of seed 004 Figs.
+    /// The Table 3 joint with another clearance and viscosity (the study of \[Flores2009\] Figs.
     /// 16–21): the bearing radius stays 10.0 mm, the journal radius is 10.0 mm − c (assumed:
     /// the paper does not say which radius it changed).
     pub fn with_clearance(radial_clearance: f64, viscosity: f64) -> Self {
@@ -196,7 +196,7 @@ impl LubricatedJointParams {
         self.bearing_radius - self.journal_radius
     }
 
-    /// The closed-form parameters of the joint (R = R_j, as seed 004 eqs. 6–17).
+    /// The closed-form parameters of the joint (R = R_j, as \[Flores2009\] eqs. 6–17).
     pub fn closed_form_params(&self) -> ClosedFormParams {
         ClosedFormParams {
             radius: self.journal_radius,
@@ -302,7 +302,7 @@ impl Integrator {
     }
 
     /// BDF2 with 360 steps per turn (1°), |Δε| ≤ 1e-7, at most 30 Newton iterations. On the
-    /// seed's case with the Pinkus–Sternlicht film the orbit is then within 0.04 µm and the
+    /// paper's case (\[Flores2009\] §8) with the Pinkus–Sternlicht film the orbit is then within 0.04 µm and the
     /// joint force within 0.3 N of Radau5's (second-order convergence: 0.01 µm at 720 steps);
     /// |Δε| ≤ 1e-7 is 0.02 nm at c = 0.2 mm, far below that.
     pub const fn bdf2_default() -> Self {
@@ -321,7 +321,7 @@ pub struct MechanismParams {
     pub mechanism: SliderCrankParams,
     /// The rod–slider joint.
     pub joint: RodSliderJoint,
-    /// Crank turns to simulate from t = 0 (seed 004: two).
+    /// Crank turns to simulate from t = 0 (\[Flores2009\]: two).
     pub turns: usize,
     /// Output samples per turn (both ends of the run included).
     pub samples_per_turn: usize,
@@ -349,7 +349,7 @@ impl MechanismParams {
         }
     }
 
-    /// Seed 004 §8: Table 2 mechanism, Table 3 joint with the Pinkus–Sternlicht film.
+    /// \[Flores2009\] §8: Table 2 mechanism, Table 3 joint with the Pinkus–Sternlicht film.
     pub fn flores2009() -> Self {
         Self::new(
             SliderCrankParams::flores2009(),

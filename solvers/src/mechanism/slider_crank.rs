@@ -1,4 +1,4 @@
-//! The slider-crank of seed 004 §8 (Fig. 12) in minimal coordinates: closed-form kinematics of
+//! The slider-crank of \[Flores2009\] §8 (Fig. 12) in minimal coordinates: closed-form kinematics of
 //! the ideal mechanism, its inverse dynamics, and the equations of motion with a clearance joint
 //! between rod and slider (see the parent module docs for the equations).
 
@@ -37,7 +37,7 @@ pub struct SliderCrankParams {
 }
 
 impl SliderCrankParams {
-    /// Seed 004 Table 2 at 5000 rpm: crank 0.05 m, 0.30 kg, 1.0e-4 kg m²; rod 0.12 m, 0.21 kg,
+    /// \[Flores2009\] Table 2 at 5000 rpm: crank 0.05 m, 0.30 kg, 1.0e-4 kg m²; rod 0.12 m, 0.21 kg,
     /// 2.5e-4 kg m²; slider 0.14 kg. Not in the paper (assumed): centres of mass at mid-length,
     /// crank angle 0 at t = 0, gravity 9.81 m/s² along −y (the mechanism in a vertical plane;
     /// 0.07 % of the slider's peak acceleration, so the choice hardly shows).

@@ -1,5 +1,5 @@
 //! Cycle metrics of a bearing answer and the deviation of the mobility answer from a reference
-//! (the rigorous JFO solution), as in Yu & Sawicki's discussion (seed 002: cycle-average
+//! (the rigorous JFO solution), as in Yu & Sawicki's discussion (\[YuSawicki2002\]: cycle-average
 //! eccentricity, minimum film, mean flow and mean power loss, deviations in %).
 //!
 //! Each answer is a sampled cycle (its own time grid); means are trapezoidal time averages over

@@ -16,7 +16,7 @@
 //!   Z(ε, û) = W (c/R)² / (μ L D |u|)        (W = −F_film, the load that balances the film)
 //! ```
 //!
-//! so that the mobility of seed 000 eq. 23 is M = û / |Z(û)| with û chosen so that Z(û) ∥ Ŵ.
+//! so that the mobility of \[Flores2006\] eq. 23 is M = û / |Z(û)| with û chosen so that Z(û) ∥ Ŵ.
 //! For the short bearing Z = 2 (L/D)² J(û) (see [`super::short_bearing`]).
 //!
 //! # The table
@@ -31,7 +31,7 @@
 //!                                                        mirror symmetry of a plain bearing:
 //!                                                        M^ζ even, M^κ odd in κ)
 //!
-//!   stored per node, relative to Booker's closed form M_B (seed 000 eqs. 28–29):
+//!   stored per node, relative to Booker's closed form M_B ([Flores2006] eqs. 28–29):
 //!       ln(|M| / |M_B|)   and   β − β_B,   β = atan2(M^κ, M^ζ) the direction of M
 //! ```
 //!
@@ -348,7 +348,7 @@ impl MobilityModel for MobilityMap {
     }
 }
 
-/// Maps built once per L/D and reused (design.md §6: "cached per L/D").
+/// Maps built once per L/D and reused (docs/conventions.md §6: the map is per L/D).
 #[derive(Debug, Default)]
 pub struct MobilityMapCache {
     maps: Vec<(f64, MobilityMapParams, std::sync::Arc<MobilityMap>)>,

@@ -3,7 +3,7 @@
 //! # The equation
 //!
 //! For a rigid plain journal bearing the Reynolds equation with surface speed U = R(ω_j − ω_b)
-//! (bearing frame, design.md §1) and film h = c − e·n, n = (cos θ, sin θ), reads
+//! (bearing frame, docs/conventions.md §1) and film h = c − e·n, n = (cos θ, sin θ), reads
 //!
 //! ```text
 //!   ∇·(h³/12μ ∇p) = (U/2R) ∂h/∂θ + ∂h/∂t = −(v·n),     v = ė − ω̄ × e,   ω̄ = (ω_j − ω_b)/2
@@ -13,11 +13,11 @@
 //! ω̄ = (ω_j − ω_b)/2 is the bearing-frame form of Booker's fixed-frame ω̄ = (ω_j + ω_b)/2: in a
 //! fixed frame ė_fixed = v + ω̄_fixed × e, and the bearing frame turns at ω_b, so
 //! ė = ė_fixed − ω_b × e = v + ((ω_j + ω_b)/2 − ω_b) × e. For a fixed bearing ω̄ = ω_j/2 (taking
-//! ω_j instead doubles the Sommerfeld number — seed 000's nomenclature gives ω̄ = ω/2).
+//! ω_j instead doubles the Sommerfeld number — \[Flores2006\]'s nomenclature gives ω̄ = ω/2).
 //!
 //! The pure-squeeze solution is linear in v for a fixed film-rupture line, so the load
-//! W (the force the machine applies to the journal, design.md §1) fixes v through the
-//! dimensionless **mobility** M (seed 000, eqs. 23–24, written as one vector equation):
+//! W (the force the machine applies to the journal, docs/conventions.md §1) fixes v through the
+//! dimensionless **mobility** M (\[Flores2006\], eqs. 23–24, written as one vector equation):
 //!
 //! ```text
 //!   dε/dt = |W| (c/R)² / (μ L D) · M(ε, Ŵ, L/D) + ω̄ × ε
@@ -25,7 +25,7 @@
 //!
 //! M is evaluated in the **frame of the load**: ζ along W, κ 90° ahead of it (counter-clockwise,
 //! the θ direction), ζ = ε·Ŵ, κ = ε·(ẑ × Ŵ). A "negative" unidirectional load is a positive load
-//! along the reversed direction, so one formula covers both signs (seed 000 eqs. 28–31 are the
+//! along the reversed direction, so one formula covers both signs (\[Flores2006\] eqs. 28–31 are the
 //! two halves of it: eqs. 30–31 are eqs. 28–29 with ζ → −ζ, κ → −κ).
 //!
 //! ```text
@@ -40,8 +40,8 @@
 //!
 //! # Modules
 //! - [`short_bearing`]: the short-bearing (Ocvirk) pure-squeeze film under Gumbel's half-film
-//!   condition — Booker's closed-form mobility (seed 000 eqs. 28–35) and the exact short-bearing
-//!   mobility obtained by inverting the closed-form squeeze-force integrals (seed 000 eqs. 25–27).
+//!   condition — Booker's closed-form mobility (\[Flores2006\] eqs. 28–35) and the exact short-bearing
+//!   mobility obtained by inverting the closed-form squeeze-force integrals (\[Flores2006\] eqs. 25–27).
 //! - [`map`]: the finite-length mobility map, tabulated over (ε, load angle) per L/D from any
 //!   pure-squeeze force provider, interpolated smoothly; the Reynolds-based provider plugs in
 //!   here.

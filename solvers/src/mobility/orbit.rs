@@ -1,7 +1,7 @@
 //! Orbit of the journal by the mobility method, integrated to a periodic cycle.
 //!
 //! The state is the eccentricity ratio vector ε = e/c in the bearing frame; the ODE is
-//! (seed 000 eqs. 23–24 in vector form, see [`super`])
+//! (\[Flores2006\] eqs. 23–24 in vector form, see [`super`])
 //!
 //! ```text
 //!   dε/dt = |W(t)| (c/R)² / (μ L D) · R(Ŵ) M(ζ, κ) + ω̄ ẑ × ε,     ζ = ε·Ŵ, κ = ε·(ẑ × Ŵ)
@@ -9,7 +9,7 @@
 //!
 //! with R(Ŵ) the rotation from the load frame to the bearing frame. It is integrated with the
 //! adaptive Dormand–Prince 5(4) pair of the `differential-equations` crate (error-controlled
-//! steps, dense output for the samples), not with a fixed-step Euler loop (seed 000 §4.2 notes
+//! steps, dense output for the samples), not with a fixed-step Euler loop (\[Flores2006\] §4.2 notes
 //! most authors used Euler). Steps are capped at one sample interval τ/N so that the dense
 //! output between steps (not error-controlled itself) stays at the integrator's accuracy.
 //!

@@ -4,8 +4,8 @@
 //! u = v/c = |W| (c/R)²/(μLD) · M (bearing frame, 1/s), and from it, by the short-bearing
 //! Gumbel film of [`super::short_bearing`]:
 //!
-//! * **Minimum film** h_min = c (1 − |ε|), in the direction of ε (seed 000 eq. 38).
-//! * **Peak pressure** in the mid-plane z = 0 of the short-bearing pressure (seed 000 eq. 18):
+//! * **Minimum film** h_min = c (1 − |ε|), in the direction of ε (\[Flores2006\] eq. 38).
+//! * **Peak pressure** in the mid-plane z = 0 of the short-bearing pressure (\[Flores2006\] eq. 18):
 //!   p(θ) = (3 μ L² / 2c²) (u·n) / (1 − ε·n)³, maximised over θ. With Sommerfeld's substitution
 //!   (1 − ε cos θ' = s/(1 + ε cos γ), s = 1 − ε²) the function is the trigonometric polynomial
 //!   (1 + ε cos γ)² [u'_x (cos γ + ε) + u'_y √s sin γ] / s³ in γ, smooth even at ε → 1; it is
@@ -14,7 +14,7 @@
 //!   integral): the axial flow per unit circumference at z = ±L/2 is
 //!   −(h³/12μ) ∂p/∂z = (v·n) L/2, so Q = 2 · ∫_{v·n>0} (v·n) L/2 · R dθ = 2 R L |v| = 2 R L c |u|.
 //!   For steady rotation (v = −ω̄ × e) this is Q = ε c U L, Ocvirk's short-bearing side flow.
-//! * **Power loss**: the dissipation integral of design.md §5,
+//! * **Power loss**: the dissipation integral of docs/conventions.md §5,
 //!   ∫∫ [μ U² f / h + (h³/12μ) |∇p|²] dA, in closed form for the short bearing:
 //!   - Couette part with f = 1 over the whole 360° (the usual mobility-method assumption —
 //!     the Gumbel film carries no film-fraction information): ∫₀^{2π} dθ/(1 − ε cos θ) =

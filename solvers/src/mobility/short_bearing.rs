@@ -3,22 +3,22 @@
 //!
 //! # Pure squeeze of the short bearing
 //!
-//! Dropping the circumferential pressure flow (Dubois & Ocvirk; seed 000 eq. 17) and writing the
+//! Dropping the circumferential pressure flow (Dubois & Ocvirk; \[Flores2006\] eq. 17) and writing the
 //! right-hand side as a pure squeeze with velocity v (see [`super`]):
 //!
 //! ```text
-//!   ∂/∂z (h³/12μ ∂p/∂z) = −v·n   ⇒   p(θ, z) = 6μ (v·n)/h³ · (L²/4 − z²)      (seed 000 eq. 18)
+//!   ∂/∂z (h³/12μ ∂p/∂z) = −v·n   ⇒   p(θ, z) = 6μ (v·n)/h³ · (L²/4 − z²)      ([Flores2006] eq. 18)
 //! ```
 //!
 //! Gumbel: p = 0 where v·n < 0 (the half of the film that opens). The film force on the journal,
-//! F = −∫∫ p n R dθ dz (seed 000 eqs. 21–22), is with h = c(1 − ε·n) and u = v/c
+//! F = −∫∫ p n R dθ dz (\[Flores2006\] eqs. 21–22), is with h = c(1 − ε·n) and u = v/c
 //!
 //! ```text
 //!   F = −(μ R L³ / c²) · J(u),   J(u) = ∫_{u·n > 0} (u·n) n / (1 − ε·n)³ dθ
 //! ```
 //!
 //! In the frame of ε (θ' from the line of centres, ε = |ε|) J is the 2×2 matrix of Booker's
-//! integrals I₃^{lm} (seed 000 eq. 27) over the half range θ' ∈ (α − π/2, α + π/2), α the
+//! integrals I₃^{lm} (\[Flores2006\] eq. 27) over the half range θ' ∈ (α − π/2, α + π/2), α the
 //! direction of u:
 //!
 //! ```text
@@ -48,11 +48,11 @@
 //!   M = û / (2 (L/D)² |J(û)|)     with the direction û chosen so that J(û) ∥ ζ̂
 //! ```
 //!
-//! (the factor 2(L/D)² of seed 000 eqs. 25–26). [`ExactShortBearing`] finds û by Newton's method
+//! (the factor 2(L/D)² of \[Flores2006\] eqs. 25–26). [`ExactShortBearing`] finds û by Newton's method
 //! on the cross-load component of J, started from Booker's direction, with the analytic
 //! derivative and the bracket α ∈ (−π/2, π/2) of the load frame as safeguard (J·û > 0 always,
 //! so the root lies inside it). [`BookerShortBearing`] is Booker's
-//! (1971) closed-form approximation as printed in seed 000, eqs. 28–29:
+//! (1971) closed-form approximation as printed in \[Flores2006\], eqs. 28–29:
 //!
 //! ```text
 //!   M^ζ = (1 − ζ)^{5/2} / (π (L/D)²),     M^κ = −4 κ (1 − ζ)^{3/2} / (π² (L/D)²)
@@ -64,7 +64,7 @@
 use super::MobilityModel;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-/// Booker's closed-form short-bearing mobility (seed 000, eqs. 28–29, load frame).
+/// Booker's closed-form short-bearing mobility (\[Flores2006\], eqs. 28–29, load frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BookerShortBearing {
     /// L/D of the bearing.

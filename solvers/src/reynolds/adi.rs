@@ -7,7 +7,7 @@
 //! With the physical bulk modulus the full-film rows are a stiff, nearly incompressible pressure
 //! (Poisson-type) operator. A line sweep solves its own direction exactly but lags the other
 //! one; for an error mode that is smooth in both θ and z the lagged part is almost all of the
-//! operator, so stationary ADI sweeps converge like 1 − O(Δ²) per sweep (design.md §3: "a
+//! operator, so stationary ADI sweeps converge like 1 − O(Δ²) per sweep (docs/conventions.md §3: "a
 //! single ADI pass per time step is not a converged solution"). Two remedies, both cheap:
 //!
 //! 1. **Coarse correction (additive correction, Settari & Aziz 1973).** Aggregate each axial

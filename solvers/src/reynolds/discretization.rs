@@ -1,6 +1,6 @@
 //! The discrete universal Reynolds equation in conservative flux form.
 //!
-//! # Equation (design.md §2; Elrod 1981; Vijayaraghavan & Keith 1989)
+//! # Equation (docs/conventions.md §2; Elrod 1981; Vijayaraghavan & Keith 1989)
 //!
 //! Unknown ψ = φ − 1 at every node, φ = ρ/ρ_c; switch g = 1 (full film, ψ ≥ 0) or 0 (cavitated,
 //! film fraction φ = 1 + ψ < 1); Elrod's linear law p = p_cav + g β ψ. Mass per unit area (ρ_c
@@ -36,7 +36,7 @@
 //! the two rows, Δz/2 next to an end — see [`super::grid`]; h_f: the exact film thickness at the
 //! face θ_{i+½}, the same value whose cube the pressure flux uses.)
 //!
-//! **Couette flux: upwind φ, face h, on every face** (design.md §2, revised). φ_up is the
+//! **Couette flux: upwind φ, face h, on every face** (docs/conventions.md §2). φ_up is the
 //! density ratio / film fraction of the upstream node in the direction of U = R(ω_j − ω_b)
 //! (L for U ≥ 0, R for U < 0), whatever the switch states of L and R. The flux is then one
 //! affine function of ψ on every face, and the pressure flux depends on ψ only through
@@ -83,7 +83,7 @@
 //! piecewise-linear residual is an M-function, which is what the semismooth Newton of
 //! `mod.rs` relies on.
 //!
-//! The pressure-driven part uses the difference of g ψ (design.md §2: it vanishes between
+//! The pressure-driven part uses the difference of g ψ (docs/conventions.md §2: it vanishes between
 //! cavitated nodes and sees p_cav at a cavity edge).
 //!
 //! Every flux is written once per face and subtracted from one node and added to the other, so

@@ -1,4 +1,4 @@
-//! Film thickness of the rigid, aligned journal bearing (design.md §1).
+//! Film thickness of the rigid, aligned journal bearing (docs/conventions.md §1).
 //!
 //! ```text
 //!   h(θ) = c − e_x cos θ − e_y sin θ = c (1 − ε_x cos θ − ε_y sin θ)

@@ -9,9 +9,9 @@
 //!   p = p_cav + g β (φ − 1),   g = 1 (φ ≥ 1, full film) | 0 (φ < 1, film fraction φ)
 //! ```
 //!
-//! (design.md §2; Elrod 1981; Vijayaraghavan & Keith 1989; Yu & Sawicki 2002 eq. 3 with g
+//! (docs/conventions.md §2; Elrod 1981; Vijayaraghavan & Keith 1989; Yu & Sawicki 2002 eq. 3 with g
 //! inside the derivative), x = Rθ, U = R(ω_j − ω_b), h = c − e_x cos θ − e_y sin θ
-//! (design.md §1), periodic in θ, p = p_amb at z = ±L/2, grooves fixed in the bearing frame held
+//! (docs/conventions.md §1), periodic in θ, p = p_amb at z = ±L/2, grooves fixed in the bearing frame held
 //! at their feed pressure or, when p_feed ≤ p_cav, at a cavitated state of given film fraction
 //! (supply cut-off, Yu & Sawicki Fig. 4 use φ = 0.01).
 //!
@@ -96,7 +96,7 @@
 //! the residual itself, and so the answer, are untouched. (σ₀ = 1 made the cold steady solves
 //! of the tables take 10–16 iterations, σ₀ = 0.01 takes 6–8.)
 //!
-//! # Supply models (design.md §8)
+//! # Supply models (docs/conventions.md §8)
 //!
 //! [`SupplyModel::Grooves`] uses the grooves only. [`SupplyModel::AxialLineAtMaxGap`] adds a
 //! full-length axial line at ambient pressure on the h_max line (opposite the eccentricity),
@@ -152,7 +152,7 @@ pub enum SupplyModel {
     #[default]
     Grooves,
     /// A full-length axial line at ambient pressure on the h_max line (steady solves only):
-    /// the Raimondi–Boyd / Butenschön problem (design.md §8).
+    /// the Raimondi–Boyd / Butenschön problem (docs/conventions.md §8).
     AxialLineAtMaxGap,
 }
 
@@ -230,7 +230,7 @@ pub struct ReynoldsParams {
     /// Maximum Krylov iterations per frozen-switch solve.
     pub max_linear_iterations: usize,
     /// Viscosity that varies with temperature along the film and with pressure (Vogel–Barus,
-    /// seed 003; [`crate::viscosity`]); `None`: the constant [`Self::viscosity`]. With a
+    /// \[Benasciutti2012\]; [`crate::viscosity`]); `None`: the constant [`Self::viscosity`]. With a
     /// pressure coefficient α > 0 a steady solve iterates the viscosity field (Picard) until no
     /// node's μ changes by more than [`VISCOSITY_PICARD_TOLERANCE`]; time steps support
     /// α = 0 only.
@@ -338,7 +338,7 @@ pub struct FilmSolution {
     pub friction_torque_journal: f64,
     /// Torque of the film on the bearing about +z, N·m.
     pub friction_torque_bearing: f64,
-    /// Viscous dissipation ∫∫ [μU²f/h + h³/(12μ)|∇p|²] dA, W (design.md §5).
+    /// Viscous dissipation ∫∫ [μU²f/h + h³/(12μ)|∇p|²] dA, W (docs/conventions.md §5).
     pub power_loss: f64,
     /// Semismooth Newton iterations of the complementarity solve (one frozen-switch linear
     /// solve each).
@@ -601,7 +601,7 @@ impl ReynoldsSolver {
     }
 
     /// One implicit time step from `state` (ε and φ at t_n) to `input.eccentricity_ratio` at
-    /// t_n + dt. The squeeze enters through h at both levels (design.md §2). The iterations
+    /// t_n + dt. The squeeze enters through h at both levels (docs/conventions.md §2). The iterations
     /// start from `state`'s φ and g.
     pub fn solve_step(
         &mut self,
@@ -765,7 +765,7 @@ impl ReynoldsSolver {
 
     /// The exact Jacobian ∂F/∂ε of the film force of the last solve (a step or a steady film),
     /// N per unit eccentricity ratio, `[[∂F_x/∂ε_x, ∂F_x/∂ε_y], [∂F_y/∂ε_x, ∂F_y/∂ε_y]]`, from
-    /// the converged linearization (design.md §4):
+    /// the converged linearization (docs/conventions.md §4):
     ///
     /// ```text
     ///   R(ψ, ε) = 0  ⇒  A(g) ∂ψ/∂ε_c = −∂R/∂ε_c |_ψ            (two right-hand sides, c = x, y)

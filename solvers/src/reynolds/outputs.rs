@@ -1,4 +1,4 @@
-//! What a solve returns (design.md §5), from the converged discrete film.
+//! What a solve returns (docs/conventions.md §5), from the converged discrete film.
 //!
 //! * Pressure p = p_cav + g β ψ at unknowns; p_amb at ends and on the supply line; p_feed (or
 //!   p_cav when cut off) in grooves.
@@ -18,10 +18,10 @@
 //!   closes the balance supply − leakage of a time step.
 //! * Shear (velocity profile u(y) = (1/2μ) p_x (y² − y h) + U (1 − y/h), journal at y = 0):
 //!   stress on the journal −μU f/h − (h/2) p_x, on the bearing +μU f/h − (h/2) p_x, f = 1 in full
-//!   film and φ in a cavity (only the oil fraction shears, design.md §5). Torques about +z are
+//!   film and φ in a cavity (only the oil fraction shears, docs/conventions.md §5). Torques about +z are
 //!   R ∫∫ stress dA, with p_x by central differences.
 //! * Power loss = ∫∫ μU² f / h dA + Σ_faces (h_f³/12μ) (Δp/Δs)² A_face (the dissipation
-//!   integral of design.md §5, its pressure part evaluated on the faces of the scheme).
+//!   integral of docs/conventions.md §5, its pressure part evaluated on the faces of the scheme).
 
 use ndarray::Array2;
 

@@ -1,7 +1,7 @@
 //! Steady load → eccentricity: Newton on (ε_x, ε_y) for a constant load.
 //!
 //! ```text
-//!   r(ε) = F_film(ε) + W = 0          (design.md §1: the film balances the machine's load)
+//!   r(ε) = F_film(ε) + W = 0          (docs/conventions.md §1: the film balances the machine's load)
 //!   J Δε = −r,   J_ab = ∂r_a/∂ε_b by forward differences (δ = 1e-6)
 //! ```
 //!

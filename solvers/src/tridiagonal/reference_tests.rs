@@ -487,7 +487,7 @@ fn batch_sizes_are_checked_and_an_empty_batch_succeeds() {
 // A circumferential line of a cavitating journal bearing.
 
 /// One implicit circumferential line (fixed z) of the universal Reynolds equation of
-/// design.md §2, in conservative flux form, for the compressor main bearing of Yu & Sawicki
+/// docs/conventions.md §2, in conservative flux form, for the compressor main bearing of Yu & Sawicki
 /// (2002, Table II: R = 27.43 mm, c = 48.9 µm, 1800 rpm) at ε = 0.8 and physical β = 1.5 GPa.
 ///
 /// Unknown φ_i at θ_i = 2π i / m, x = R θ, Δx = 2π R / m. Face flux (per unit length, ρ_c

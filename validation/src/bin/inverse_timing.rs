@@ -2,7 +2,7 @@
 //! one load cycle of a bearing the size of the compressor main bearing, where the time goes,
 //! and how it scales with grid size and step count.
 //!
-//! Bearing (design.md §7): L = 18.288 mm, R = 27.43 mm, c = 48.9 µm, partial groove
+//! Bearing (docs/conventions.md §7): L = 18.288 mm, R = 27.43 mm, c = 48.9 µm, partial groove
 //! 24.9 × 3.81 mm at θ = 90° fed at 0.2068 MPa, 1800 rpm, μ = 0.02 Pa·s (assumed). Load: the
 //! synthetic compressor-like cycle of the inverse benches (a 4 kN pulse once per turn on 0.8 kN,
 //! plus a 0.6 kN second-order side load). Each run is the run-in (a quarter cycle) plus one

@@ -1,4 +1,4 @@
-//! Timing report of the slider-crank with a lubricated joint (issue 16, item 5): seed 004's
+//! Timing report of the slider-crank with a lubricated joint (issue 16, item 5): \[Flores2009\]'s
 //! example (Table 2 mechanism at 5000 rpm, Table 3 joint, c = 0.2 mm, μ = 400 cP), two crank
 //! turns from the start, as `solve_mechanism` runs it by default:
 //!
@@ -90,7 +90,7 @@ fn main() -> Result<()> {
         }
     }
     println!(
-        "Machine: {}. Measured: {}. Thread CPU time, one core, release build. Seed 004 §8: \
+        "Machine: {}. Measured: {}. Thread CPU time, one core, release build. [Flores2009] §8: \
          5000 rpm, c = 0.2 mm, μ = 400 cP, two crank turns from the start, 360 samples per turn.\n",
         machine(),
         jiff::Timestamp::now().strftime("%Y-%m-%d %H:%M UTC"),

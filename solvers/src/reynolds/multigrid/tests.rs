@@ -16,7 +16,7 @@ fn rng(mut seed: u64) -> impl FnMut() -> f64 {
     }
 }
 
-/// The compressor main bearing of the validation timing case (design.md §7): L = 18.288 mm,
+/// The compressor main bearing of the validation timing case (docs/conventions.md §7): L = 18.288 mm,
 /// R = 27.43 mm, c = 48.9 µm, μ = 0.02 Pa·s, a full-length feed groove 3.81 mm wide at θ = 90°
 /// (its 24.9 mm axial extent covers the whole length), fed at 0.2068 MPa, 1800 rpm.
 fn compressor(solver: LinearSolver, n_theta: usize, n_z: usize) -> ReynoldsParams {
