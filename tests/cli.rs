@@ -470,9 +470,9 @@ fn closed_form_prints_the_seed_004_equilibria() {
 
 #[test]
 fn closed_form_table_agrees_with_the_mobility_equilibrium_of_a_steady_load() {
-    // JB1 ([Benasciutti2012]) under its constant load: the mobility orbit (Booker's short-bearing
+    // JB1 [Benasciutti2012] under its constant load: the mobility orbit (Booker's short-bearing
     // mobility) settles at the static equilibrium; the closed-form short-bearing Gumbel model
-    // solves that equilibrium directly ([Flores2009]). Two routes to the same short-bearing answer:
+    // solves that equilibrium directly [Flores2009]. Two routes to the same short-bearing answer:
     // Booker's closed form approximates the Gumbel squeeze film to about 1 % in ε here, hence 1 %.
     let case = jbearing::case::Case::from_file(&root().join("cases/benasciutti_jb1_steady.toml"))
         .expect("JB1 case");

@@ -1,7 +1,7 @@
 //! # jbearing-solvers
 //!
 //! The numerics of jbearing: dynamically loaded journal bearings with mass-conserving
-//! (Jakobsson–Floberg–Olsson) cavitation, after Yu & Sawicki (2002, \[YuSawicki2002\]), the core paper of the project (references:
+//! (Jakobsson–Floberg–Olsson) cavitation, after Yu & Sawicki \[YuSawicki2002\], the core paper of the project (references:
 //! `docs/REFERENCES.md`; conventions: `docs/conventions.md`).
 //!
 //! This crate is pure numerics: SI units in, typed results out, no files and no printing.
@@ -18,7 +18,7 @@
 //!   load tables, synthetic loads, and the [`load::LoadHistory`] trait (W(t), ω_j, ω_b, p_feed).
 //! - [`inverse`]: the inverse dynamic-load problem (load history → journal orbit): Newton on the
 //!   eccentricity per time step, run-in, cycles to a periodic solution, per-step time series.
-//! - [`mechanism`]: the planar slider-crank of Flores et al. 2009 (\[Flores2009\]) with a lubricated
+//! - [`mechanism`]: the planar slider-crank of \[Flores2009\] with a lubricated
 //!   rod–slider joint (closed-form or Reynolds film, Lankarani–Nikravesh contact when the film
 //!   breaks down), integrated in minimal coordinates; and its ideal-joint inverse dynamics.
 //! - [`mobility`]: Booker's mobility method (short-bearing closed forms, finite-length mobility

@@ -1,4 +1,4 @@
-//! The Ritz method of Antonić, Nikolić & Torović (\[Antonic2004\]) for the finite
+//! The Ritz method of Antonić, Nikolić & Torović \[Antonic2004\] for the finite
 //! journal bearing whose film extends over θ = 0 … π (their "hypothesis III").
 //!
 //! # Problem

@@ -1,7 +1,7 @@
 //! A single-cylinder slider-crank compressor: the loads on its main and connecting-rod bearings,
 //! the rod's angular velocity and the rod bearing's oil feed through the crank drilling.
 //!
-//! Yu & Sawicki (2002, \[YuSawicki2002\], Table II) give the two bearings of a commercial
+//! Yu & Sawicki \[YuSawicki2002\] (Table II) give the two bearings of a commercial
 //! reciprocating air compressor but draw the load and feed histories only as figures (Figs. 3a–b,
 //! 4a–b). This module synthesizes those histories from the physics of the machine
 //! (docs/conventions.md §7), so that the compressor cases are reproducible from stated numbers.

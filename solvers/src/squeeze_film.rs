@@ -14,7 +14,7 @@
 //!
 //! with P = 0 at the ends and the Reynolds condition P ≥ 0, (flow balance) where P > 0: a linear
 //! complementarity problem. A single instant has no film history, which the mass-conserving JFO
-//! model needs; mobility methods assume exactly this condition (Booker 1965; Goenka 1984 tabulated
+//! model needs; mobility methods assume exactly this condition (\[Booker1965\]; \[Goenka1984\] tabulated
 //! finite-element solutions of it). In the short-bearing limit the θ-lines decouple and the
 //! condition reduces to Gumbel's half film: P = 6 (û·n)⁺ ((L/D)² − ξ²)/H³ (\[Flores2006\], eq. 18
 //! with ω̄ = 0), which the tests use as the oracle.
@@ -53,7 +53,7 @@
 //!
 //! With A the (symmetric positive definite, M-matrix) negative of the flux operator and f the
 //! right-hand side: P ≥ 0, A P − f ≥ 0, P·(A P − f) = 0. The primal–dual active-set method
-//! (Hintermüller, Ito & Kunisch 2003) solves it exactly in a few sparse LU solves (faer): nodes
+//! \[HintermullerItoKunisch2002\] solves it exactly in a few sparse LU solves (faer): nodes
 //! with P = 0 are "active"; each pass solves the free rows and re-sorts nodes by the sign of P
 //! (free nodes) or of the multiplier A P − f (active nodes). For an M-matrix it terminates in
 //! finitely many passes; a pass limit guards the loop.

@@ -26,7 +26,7 @@ pub enum TimeScheme {
     /// Backward Euler: first order, L-stable.
     BackwardEuler,
     /// Variable-step BDF2: second order, L-stable at constant steps (zero-stable for step ratios
-    /// ω < 1 + √2, Grigorieff 1983).
+    /// ω < 1 + √2, \[Grigorieff1983\]).
     #[default]
     Bdf2,
     /// Crank–Nicolson (trapezoidal): second order, A- but not L-stable.

@@ -1435,7 +1435,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
 /// likely). Each is about an order of magnitude beyond what journal bearings have:
 /// - clearance ratio c/R: usually 5e-4 … 3e-3 in machine bearings (Khonsari & Booser, *Applied
 ///   Tribology*, 3rd ed., §8: "c/R ≈ 0.001"), up to 2e-2 in the clearance joints of mechanisms
-///   (\[Flores2009\], Flores et al. 2009, Table 1); flagged outside 1e-5 … 5e-2, which still catches
+///   (\[Flores2009\] Table 1); flagged outside 1e-5 … 5e-2, which still catches
 ///   a length typed in mm for m (× 1000) and the other way round;
 /// - width ratio L/D: 0.2 … 1.5 in practice; flagged outside 0.05 … 3;
 /// - dynamic viscosity: 2e-3 (light oils hot) … 1 Pa·s (ISO VG 680 cold); flagged outside

@@ -95,7 +95,7 @@ pub struct GrooveSection {
 pub struct LubricantSection {
     /// Constant viscosity; absent when `vogel` gives μ(T).
     pub viscosity_pa_s: Option<f64>,
-    /// Vogel's μ₀(T) = a exp(b / (T − c)) (\[Benasciutti2012\]).
+    /// Vogel's μ₀(T) = a exp(b / (T − c)) \[Benasciutti2012\].
     pub vogel: Option<VogelSection>,
     /// Barus pressure–viscosity coefficient α (1/Pa) of the rigorous film, with a Vogel law
     /// (\[Benasciutti2012\]: 1e-8 … 2e-8); default 0.

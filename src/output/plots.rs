@@ -1,4 +1,4 @@
-//! PNG plots of one case, after Yu & Sawicki (2002), Figs. 3 and 4, and the pictures every
+//! PNG plots of one case, after Yu & Sawicki \[YuSawicki2002\], Figs. 3 and 4, and the pictures every
 //! engine-bearing code draws.
 //!
 //! `CASE_cycle.png` — six panels against crank angle, rigorous (solid blue) and mobility (dashed

@@ -26,7 +26,7 @@ pub fn read_reference_csv(name: &str) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// The example of Flores et al. (2006), \[Flores2006\] §5 and Table 1: L = 25.4 mm, D = 63.5 mm,
+/// The example of Flores et al. \[Flores2006\] (§5 and Table 1): L = 25.4 mm, D = 63.5 mm,
 /// c = 35.56 µm (the table's "mm" is a unit slip), μ = 4.16 cP, 2000 rpm, fixed bearing, the
 /// Bouldin & Berker engine load of `data/reference/flores2006_load.csv` (720° cycle, along −Y),
 /// start ε⁰ = 0.1 at φ⁰ = 1.5 rad.
@@ -77,7 +77,7 @@ pub mod flores2006 {
     }
 }
 
-/// The compressor main bearing of Yu & Sawicki (2002) Table II (docs/conventions.md §7) as used by the
+/// The compressor main bearing of Yu & Sawicki \[YuSawicki2002\] Table II (docs/conventions.md §7) as used by the
 /// inverse-solver tests and the inverse timing report: L = 18.288 mm, R = 27.43 mm,
 /// c = 48.9 µm, a partial groove 24.9 × 3.81 mm at θ = 90° (top, unloaded side) fed at
 /// 0.2068 MPa, 1800 rpm; μ = 0.02 Pa·s assumed. The synthetic compressor-like load: a 4 kN

@@ -1,4 +1,4 @@
-//! The simple journal bearing of Flores et al. 2009 (\[Flores2009\], §7, Table 1,
+//! The simple journal bearing of \[Flores2009\] (§7, Table 1,
 //! Figs. 9–11): equilibrium of each closed-form model, side by side.
 //!
 //! Table 1: external load 30 N, bearing radius 10.0 mm, journal radius 9.8 mm, radial clearance

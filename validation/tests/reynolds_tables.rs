@@ -1,5 +1,5 @@
-//! Reynolds solver against the finite-bearing tables (docs/conventions.md §8 rung 3): Butenschön (1976)
-//! rotation tables for B/d = 1, 1/2, 1/3 and Raimondi & Boyd (1958) for L/D = 1, 1/2
+//! Reynolds solver against the finite-bearing tables (docs/conventions.md §8 rung 3): Butenschön \[Butenschoen1976\]
+//! rotation tables for B/d = 1, 1/2, 1/3 and Raimondi & Boyd \[RaimondiBoyd1958\] for L/D = 1, 1/2
 //! (`data/reference/*.csv`, provenance in the `.md` beside each). Both tables solve the problem
 //! "the film starts at the widest gap": a full-length axial supply line at ambient pressure on
 //! the h_max line ([`SupplyModel::AxialLineAtMaxGap`]).

@@ -22,7 +22,7 @@
 //! - friction torques and power loss as for the inverse solver's analytic film:
 //!   T_s = 2π μ R³ L ω / (c √(1−ε²)) (Couette shear over 360°), T_journal = −T_s − ½ (e × F)_z,
 //!   T_bearing = T_s − ½ (e × F)_z, power = T_s ω + W·v with the squeeze velocity
-//!   v = c(ε̇ − ω̄ × ε), ω̄ = ω/2 (Booker 1965).
+//!   v = c(ε̇ − ω̄ × ε), ω̄ = ω/2 \[Booker1965\].
 
 use super::{ClosedFormModel, ClosedFormParams, JournalMotion, film_force, pressure};
 use crate::inverse::{FilmConditions, FilmModel, FilmModelError, FilmResponse, TimeScheme};

@@ -1,5 +1,5 @@
 //! Pinkus & Sternlicht's dynamic forces of the infinitely long bearing with a moving film
-//! (\[Flores2009\] eqs. 14–18, after Pinkus & Sternlicht 1961).
+//! (\[Flores2009\] eqs. 14–18, after \[PinkusSternlicht1961\]).
 //!
 //! For a journal moving radially the film ends are not at ψ = 0 and π; Pinkus & Sternlicht find
 //! them and give the forces in closed form with

@@ -11,7 +11,7 @@
 //!
 //! The film force depends on ε^{n+1} directly (film thickness h = c − e·n) and through the time
 //! derivative of the film content (squeeze), so each time step is a 2×2 nonlinear system in the
-//! eccentricity ratio vector ε = e/c. Yu & Sawicki (2002, \[YuSawicki2002\], "inverse solution": Newton on
+//! eccentricity ratio vector ε = e/c. Yu & Sawicki \[YuSawicki2002\] ("inverse solution": Newton on
 //! the journal centre position per time step) solve it by Newton's method; so do we:
 //!
 //! ```text

@@ -38,7 +38,7 @@
 //! end passes R L c |u| (Q = 2RLc|u| in total). Cavitated fraction: the unpressurised half of
 //! Gumbel's film, 1/2 when v ≠ 0. No grooves (empty supply flow). Power loss (docs/conventions.md §5):
 //! Couette part 2π μ R³ L (ω_j − ω_b)²/(c √(1−ε²)) over the full 360° plus the squeeze part
-//! W·v = −F·(c u) (Booker 1965). Friction torques (shear stress −μU/h ∓ (h/2)∂p/∂x on the
+//! W·v = −F·(c u) \[Booker1965\]. Friction torques (shear stress −μU/h ∓ (h/2)∂p/∂x on the
 //! journal/bearing surface, pressure term integrated by parts):
 //!
 //! ```text

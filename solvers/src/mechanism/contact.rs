@@ -1,7 +1,7 @@
 //! Dry contact of the journal on the bearing wall and the lubricated → dry transition
 //! (\[Flores2009\] §4, eq. 20; the contact law of its ref. 3, Flores & Ambrósio 2004).
 //!
-//! # Contact law (Lankarani–Nikravesh 1990)
+//! # Contact law \[LankaraniNikravesh1990\]
 //!
 //! With the penetration δ (m) and its rate δ̇, and δ̇⁻ the penetration rate at the onset of the
 //! contact (the impact velocity):

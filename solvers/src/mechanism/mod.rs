@@ -1,4 +1,4 @@
-//! Planar slider-crank with a lubricated revolute joint (\[Flores2009\], Flores et al. 2009, §§3–8):
+//! Planar slider-crank with a lubricated revolute joint (\[Flores2009\] §§3–8):
 //! the forward problem — the crank is driven at constant speed, the journal of the rod–slider
 //! joint moves in its clearance under the film (and, when the film breaks down, the contact)
 //! force, and the joint forces, the driving moment, the journal orbit and h_min come out.

@@ -1,7 +1,7 @@
 //! Finite-length mobility map: pure-squeeze solutions tabulated over (ε, load angle) for one
 //! L/D, inverted to mobilities at the nodes and interpolated smoothly.
 //!
-//! Goenka (1984) fitted curves to finite-element pure-squeeze solutions; his formulas were not
+//! Goenka \[Goenka1984\] fitted curves to finite-element pure-squeeze solutions; his formulas were not
 //! at hand, so this module builds the same object the way he did: from any pure-squeeze film
 //! solver behind [`PureSqueezeFilm`] (our Reynolds solver with Reynolds/Swift–Stieber or Gumbel
 //! conditions plugs in here; the short-bearing closed form [`ShortBearingSqueeze`] is the

@@ -9,7 +9,7 @@
 //!   ∇·(h³/12μ ∇p) = (U/2R) ∂h/∂θ + ∂h/∂t = −(v·n),     v = ė − ω̄ × e,   ω̄ = (ω_j − ω_b)/2
 //! ```
 //!
-//! i.e. wedge plus squeeze is a **pure squeeze** with the effective velocity v (Booker 1965).
+//! i.e. wedge plus squeeze is a **pure squeeze** with the effective velocity v \[Booker1965\].
 //! ω̄ = (ω_j − ω_b)/2 is the bearing-frame form of Booker's fixed-frame ω̄ = (ω_j + ω_b)/2: in a
 //! fixed frame ė_fixed = v + ω̄_fixed × e, and the bearing frame turns at ω_b, so
 //! ė = ė_fixed − ω_b × e = v + ((ω_j + ω_b)/2 − ω_b) × e. For a fixed bearing ω̄ = ω_j/2 (taking

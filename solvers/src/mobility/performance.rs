@@ -22,7 +22,7 @@
 //!     eccentricity factor).
 //!   - Pressure part: with p from eq. 18, (h³/12μ)(∂p/∂z)² integrated over z gives
 //!     μ (v·n)² L³/h³ per unit circumference, whose integral over the pressurised half is
-//!     exactly W·v (Booker 1965: the squeeze dissipation is the load times the squeeze
+//!     exactly W·v (\[Booker1965\]: the squeeze dissipation is the load times the squeeze
 //!     velocity). P_squeeze = W·v ≥ 0.
 //!
 //! These are closed forms of the short-bearing film; with a finite-length mobility map the

@@ -10,7 +10,7 @@
 //! operator, so stationary ADI sweeps converge like 1 − O(Δ²) per sweep (docs/conventions.md §3: "a
 //! single ADI pass per time step is not a converged solution"). Two remedies, both cheap:
 //!
-//! 1. **Coarse correction (additive correction, Settari & Aziz 1973).** Aggregate each axial
+//! 1. **Coarse correction (additive correction, \[SettariAziz1973\]).** Aggregate each axial
 //!    line's unknowns into one: restriction R sums the rows of line i, prolongation P puts a
 //!    constant on the line's unknowns (0 on Dirichlet nodes). The Galerkin operator R A P of the
 //!    five-point stencil couples line i with i ± 1 only and is periodic in θ:
@@ -37,7 +37,7 @@
 //!    ([`InterleavedFactors`]), and each sweep is a forward and a back substitution, vectorized
 //!    across lines (bit for bit the one-shot line solvers' result).
 //!
-//!    Restarted flexible GMRES (Saad 1993) iterates on A M⁻¹ until the discrete mass
+//!    Restarted flexible GMRES \[Saad1993\] iterates on A M⁻¹ until the discrete mass
 //!    residual max_k |r_k| is below `tolerance ×` the flux scale (max over rows of Σ|A_kl ψ_l|).
 //!
 //! The switch g is frozen during this solve and updated in the outer loop (`mod.rs`), which

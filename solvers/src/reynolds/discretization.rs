@@ -1,6 +1,6 @@
 //! The discrete universal Reynolds equation in conservative flux form.
 //!
-//! # Equation (docs/conventions.md §2; Elrod 1981; Vijayaraghavan & Keith 1989)
+//! # Equation (docs/conventions.md §2; \[Elrod1981\]; \[VijayaraghavanKeith1989\])
 //!
 //! Unknown ψ = φ − 1 at every node, φ = ρ/ρ_c; switch g = 1 (full film, ψ ≥ 0) or 0 (cavitated,
 //! film fraction φ = 1 + ψ < 1); Elrod's linear law p = p_cav + g β ψ. Mass per unit area (ρ_c

@@ -9,7 +9,7 @@
 //!   p = p_cav + g β (φ − 1),   g = 1 (φ ≥ 1, full film) | 0 (φ < 1, film fraction φ)
 //! ```
 //!
-//! (docs/conventions.md §2; Elrod 1981; Vijayaraghavan & Keith 1989; Yu & Sawicki 2002 eq. 3 with g
+//! (docs/conventions.md §2; \[Elrod1981\]; \[VijayaraghavanKeith1989\]; \[YuSawicki2002\] eq. 3 with g
 //! inside the derivative), x = Rθ, U = R(ω_j − ω_b), h = c − e_x cos θ − e_y sin θ
 //! (docs/conventions.md §1), periodic in θ, p = p_amb at z = ±L/2, grooves fixed in the bearing frame held
 //! at their feed pressure or, when p_feed ≤ p_cav, at a cavitated state of given film fraction
@@ -54,8 +54,8 @@
 //!   R_mass(u, v) = C (u − v) + P u − b = 0,      min(u_k, v_k) = 0  (every unknown k),
 //! ```
 //!
-//! is the primal–dual active-set method (Hintermüller, Ito & Kunisch 2003) and, for an LCP,
-//! block principal pivoting (Júdice & Pires 1994): the min-function's generalized derivative
+//! is the primal–dual active-set method \[HintermullerItoKunisch2002\] and, for an LCP,
+//! block principal pivoting \[JudicePires1994\]: the min-function's generalized derivative
 //! picks u_k = 0 (cavitated) or v_k = 0 (full) according to the switch g; with g fixed the
 //! linearized system is exactly the frozen-switch system A(g) y = b, A(g) = C + P diag(g) (the
 //! mass balance is linear), whose solution y gives the next point (u, v) = (g y, −(1 − g) y).
@@ -72,7 +72,7 @@
 //!    infeasible nodes seen, in which case it changes only the infeasible node of least index,
 //!    with a tight solve (Murty's single pivot), until the count falls below that smallest
 //!    number again. This is Júdice & Pires' safeguarded block pivoting: Murty's least-index
-//!    rule terminates finitely for every P-matrix LCP (Murty 1974), and the discrete JFO
+//!    rule terminates finitely for every P-matrix LCP \[Murty1974\], and the discrete JFO
 //!    problem of a time step is one (every switch pattern gives an M-matrix), so the iteration
 //!    cannot cycle. (A backtracking line search on a merit function in (u, v) was tried first
 //!    and dropped: the full step, which briefly raises the complementarity violation of nodes
@@ -91,8 +91,8 @@
 //! cavitated circumferential ring (its content only circulates), which early iterates can
 //! have. Steady solves therefore add a pseudo-time term to the Newton matrix only —
 //! (A(g) + D) ψ⁺ = b + D ψ, D_k = σ (|U|/2) h_k Δz_k (σ times the cell's Couette outflow),
-//! σ = 0.01 · max|R(ψ)| / max|R(ψ⁰)| (switched evolution relaxation, Mulder & van Leer 1985;
-//! pseudo-transient continuation, Kelley & Keyes 1998) — which vanishes as the residual does:
+//! σ = 0.01 · max|R(ψ)| / max|R(ψ⁰)| (switched evolution relaxation, \[MulderVanLeer1985\];
+//! pseudo-transient continuation, \[KelleyKeyes1998\]) — which vanishes as the residual does:
 //! the residual itself, and so the answer, are untouched. (σ₀ = 1 made the cold steady solves
 //! of the tables take 10–16 iterations, σ₀ = 0.01 takes 6–8.)
 //!
@@ -1317,7 +1317,7 @@ const STEADY_SHIFT: f64 = 0.01;
 const JACOBIAN_TOLERANCE: f64 = 1e-7;
 
 /// Block pivots allowed without lowering the number of infeasible nodes before a single
-/// (Murty) pivot is taken (Júdice & Pires 1994 use 3 … 10).
+/// (Murty) pivot is taken (\[JudicePires1994\] use 3 … 10).
 const BLOCK_TRIES: usize = 5;
 
 /// Counters of one semismooth Newton solve.

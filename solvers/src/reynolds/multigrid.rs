@@ -22,7 +22,7 @@
 //!
 //! # Grid hierarchy and transfers
 //!
-//! Semi-coarsening in θ only (Venner & Lubrecht 2000; Trottenberg, Oosterlee & Schüller 2001,
+//! Semi-coarsening in θ only (\[VennerLubrecht2000\]; \[Trottenberg2001\],
 //! ch. 5 on anisotropic operators): the coarse ring keeps the even fine columns,
 //! n_c = ⌈n_θ/2⌉, level after level until n_θ ≤ [`COARSEST_THETA`] (120 → 60 → 30 → 15 → 8 on
 //! the default grid). The z-lines stay whole on every level, so the axial line solve is exact

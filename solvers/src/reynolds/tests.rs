@@ -188,7 +188,7 @@ fn a_step_started_from_a_nearby_answer_gives_the_same_film() {
     ));
 }
 
-/// Lemke's complementary pivoting (Lemke 1965; the LCP oracle of Giacopini et al. 2010) on a
+/// Lemke's complementary pivoting (\[Lemke1965\]; the LCP oracle of \[Giacopini2010\]) on a
 /// dense LCP: find z ≥ 0 with w = M z + q ≥ 0 and zᵀw = 0. Returns (z, w).
 fn lemke(m: &nalgebra::DMatrix<f64>, q: &nalgebra::DVector<f64>) -> (Vec<f64>, Vec<f64>) {
     let n = q.len();

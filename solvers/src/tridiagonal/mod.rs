@@ -1,6 +1,6 @@
 //! Tridiagonal line solvers: the kernels of the ADI sweeps.
 //!
-//! One grid line of the discrete universal Reynolds equation (Yu & Sawicki 2002, eq. 12) reads
+//! One grid line of the discrete universal Reynolds equation (\[YuSawicki2002\], eq. 12) reads
 //!
 //! ```text
 //!     b_i x_{i-1} + d_i x_i + a_i x_{i+1} = c_i,        i = 0 … m-1

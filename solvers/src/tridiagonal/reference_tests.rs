@@ -10,7 +10,7 @@
 //!     η(x̂) = ‖A x̂ − c‖∞ / (‖A‖∞ ‖x̂‖∞ + ‖c‖∞)
 //! ```
 //!
-//! which is the normwise backward error (Rigal & Gaches 1967): the smallest ε for which x̂ solves
+//! which is the normwise backward error \[RigalGaches1967\]: the smallest ε for which x̂ solves
 //! (A + δA) x̂ = c + δc exactly with ‖δA‖∞ ≤ ε ‖A‖∞ and ‖δc‖∞ ≤ ε ‖c‖∞. It is what a stable
 //! elimination guarantees to O(unit round-off) independently of the conditioning of A, so a
 //! bound on it tests the algorithm, not the matrix. Thomas on a diagonally dominant (by rows or
