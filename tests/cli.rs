@@ -8,6 +8,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+mod common;
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -901,49 +903,14 @@ fn check_finds_duplicate_names_and_an_unusable_output_directory() {
 /// A small grooved bearing under a rotating load (36 × 9 film, 10° steps), with the
 /// `[lubricant]` body `lubricant` and the methods `methods`.
 fn thermal_case_text(name: &str, lubricant: &str, methods: &str) -> String {
-    format!(
-        r#"version = 1
-name = "{name}"
-
-[bearing]
-radius_m = 0.025
-length_m = 0.02
-radial_clearance_m = 4e-5
-
-[[grooves]]
-center_angle_deg = 90.0
-circumferential_length_m = 0.006
-axial_width_m = 0.006
-
-{lubricant}
-
-[operation]
-cycle_deg = 360.0
-crank_speed_rpm = 1800.0
-
-[load]
-crank_angle_deg = [0.0, 90.0, 180.0, 270.0]
-x_n = [-2000.0, -1500.0, -1000.0, -1500.0]
-y_n = [0.0, 500.0, 0.0, -500.0]
-
-[feed]
-pressure_pa = 2.0e5
-
-[grid]
-n_theta = 36
-n_z = 9
-
-[solver]
-time_steps_per_cycle = 36
-max_cycles = 8
-
-[output]
-field_snapshots = 4
-plots = false
-
-[methods]
-{methods}
-"#
+    common::small_bearing_case(
+        name,
+        lubricant,
+        &format!(
+            "[feed]\npressure_pa = 2.0e5\n\n[grid]\nn_theta = 36\nn_z = 9\n\n[solver]\n\
+             time_steps_per_cycle = 36\nmax_cycles = 8\n\n[output]\nfield_snapshots = 4\n\
+             plots = false\n\n[methods]\n{methods}\n"
+        ),
     )
 }
 

@@ -457,14 +457,7 @@ impl Case {
         }
         if let Some(h) = &self.heat_balance {
             let hp = &h.params;
-            p.push(Parameter::number(
-                "vogel_a",
-                h.vogel.a,
-                "Pa s",
-                "Vogel viscosity law mu0(T) = a exp(b / (T - c)): a",
-            ));
-            p.push(Parameter::number("vogel_b", h.vogel.b, "K", "Vogel b"));
-            p.push(Parameter::number("vogel_c", h.vogel.c, "degC", "Vogel c"));
+            push_vogel(&mut p, &h.vogel);
             p.push(Parameter::number(
                 "supply_temperature",
                 hp.supply_temperature,
@@ -497,14 +490,7 @@ impl Case {
             ));
         }
         if let Some(m) = &self.viscosity_model {
-            p.push(Parameter::number(
-                "vogel_a",
-                m.vogel.a,
-                "Pa s",
-                "Vogel viscosity law mu0(T) = a exp(b / (T - c)): a",
-            ));
-            p.push(Parameter::number("vogel_b", m.vogel.b, "K", "Vogel b"));
-            p.push(Parameter::number("vogel_c", m.vogel.c, "degC", "Vogel c"));
+            push_vogel(&mut p, &m.vogel);
             p.push(Parameter::number(
                 "pressure_viscosity_coefficient",
                 m.pressure_coefficient,
@@ -1548,6 +1534,18 @@ fn plausibility_warnings(case: &Case, ctx: &Ctx<'_>) -> Vec<CaseWarning> {
         );
     }
     out
+}
+
+/// The Vogel law's a, b, c as report parameters.
+fn push_vogel(p: &mut Vec<Parameter>, v: &Vogel) {
+    p.push(Parameter::number(
+        "vogel_a",
+        v.a,
+        "Pa s",
+        "Vogel viscosity law mu0(T) = a exp(b / (T - c)): a",
+    ));
+    p.push(Parameter::number("vogel_b", v.b, "K", "Vogel b"));
+    p.push(Parameter::number("vogel_c", v.c, "degC", "Vogel c"));
 }
 
 /// What `[lubricant]` says about the viscosity, resolved.

@@ -149,14 +149,8 @@ impl FileWriter {
         labels: &[String],
         long_name: &str,
     ) -> Res<h5::Dataset> {
-        let v: Vec<VarLenUnicode> = labels.iter().map(|l| vlen(l)).collect();
-        let ds = g
-            .new_dataset_builder()
-            .with_data(&v[..])
-            .create(name)
-            .map_err(self.err(format!("coordinate {name}")))?;
+        let ds = self.strings(g, name, labels, long_name)?;
         self.make_scale(&ds, name)?;
-        self.str_attr(&ds, "long_name", long_name)?;
         Ok(ds)
     }
 
@@ -169,13 +163,25 @@ impl FileWriter {
         dim: &h5::Dataset,
         long_name: &str,
     ) -> Res<h5::Dataset> {
+        let ds = self.strings(g, name, values, long_name)?;
+        self.attach(&ds, &[dim], name)?;
+        Ok(ds)
+    }
+
+    /// A 1-D dataset of UTF-8 strings with its long name.
+    fn strings(
+        &mut self,
+        g: &h5::Group,
+        name: &str,
+        values: &[String],
+        long_name: &str,
+    ) -> Res<h5::Dataset> {
         let v: Vec<VarLenUnicode> = values.iter().map(|l| vlen(l)).collect();
         let ds = g
             .new_dataset_builder()
             .with_data(&v[..])
             .create(name)
             .map_err(self.err(format!("variable {name}")))?;
-        self.attach(&ds, &[dim], name)?;
         self.str_attr(&ds, "long_name", long_name)?;
         Ok(ds)
     }

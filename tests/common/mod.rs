@@ -280,14 +280,13 @@ pub fn report(case_name: &str) -> CaseReport {
     }
 }
 
-/// A cheap swept case: Booker's mobility method on a small grooved bearing under a rotating
-/// load, 3 clearances × 2 viscosities = 6 cases.
-pub fn sweep_case(dir: &std::path::Path) -> std::path::PathBuf {
-    let p = dir.join("sweep.toml");
-    std::fs::write(
-        &p,
+/// A small grooved bearing (R 25 mm, L 20 mm, c 40 µm, one feed groove) under a rotating load
+/// at 1800 rpm: the case text with the `[lubricant]` body `lubricant` and the tables `tail`
+/// after the load.
+pub fn small_bearing_case(name: &str, lubricant: &str, tail: &str) -> String {
+    format!(
         r#"version = 1
-name = "sw"
+name = "{name}"
 
 [bearing]
 radius_m = 0.025
@@ -299,8 +298,7 @@ center_angle_deg = 90.0
 circumferential_length_m = 0.006
 axial_width_m = 0.006
 
-[lubricant]
-viscosity_pa_s = 0.02
+{lubricant}
 
 [operation]
 cycle_deg = 360.0
@@ -311,7 +309,15 @@ crank_angle_deg = [0.0, 90.0, 180.0, 270.0]
 x_n = [-2000.0, -1500.0, -1000.0, -1500.0]
 y_n = [0.0, 500.0, 0.0, -500.0]
 
-[solver]
+{tail}"#
+    )
+}
+
+/// A cheap swept case: Booker's mobility method on [`small_bearing_case`], 3 clearances × 2
+/// viscosities = 6 cases.
+pub fn sweep_case(dir: &std::path::Path) -> std::path::PathBuf {
+    let p = dir.join("sweep.toml");
+    let tail = r#"[solver]
 mobility_model = "booker"
 
 [output]
@@ -327,7 +333,10 @@ combine = "factorial"
 [sweep.values]
 "bearing.radial_clearance_m" = [3e-5, 4e-5, 5e-5]
 "lubricant.viscosity_pa_s" = { start = 0.01, stop = 0.04, count = 2, spacing = "log" }
-"#,
+"#;
+    std::fs::write(
+        &p,
+        small_bearing_case("sw", "[lubricant]\nviscosity_pa_s = 0.02", tail),
     )
     .unwrap();
     p

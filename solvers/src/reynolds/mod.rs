@@ -714,13 +714,7 @@ impl ReynoldsSolver {
             let mut converged = None;
             for _ in 0..VISCOSITY_PICARD_MAX {
                 let core = self.step_core(input, bdf2.as_ref(), backward_euler, warm.clone())?;
-                change = core
-                    .psi
-                    .iter()
-                    .zip(&self.viscosity_pressure)
-                    .map(|(psi, p_old)| (alpha * (beta * psi.max(0.0) - p_old)).exp_m1().abs())
-                    .fold(0.0, f64::max);
-                self.viscosity_pressure = core.psi.iter().map(|psi| beta * psi.max(0.0)).collect();
+                change = self.update_viscosity_pressure(&core, alpha);
                 if change <= VISCOSITY_PICARD_TOLERANCE {
                     converged = Some(core);
                     break;
@@ -951,6 +945,21 @@ impl ReynoldsSolver {
         }
     }
 
+    /// One Picard update of the viscosity field's pressure: the pressures above p_cav of the
+    /// film `core` become the pressures μ is evaluated at; returns the largest factor
+    /// |exp(α Δp) − 1| by which a node's μ changes with them.
+    fn update_viscosity_pressure(&mut self, core: &Core, alpha: f64) -> f64 {
+        let beta = self.params.bulk_modulus;
+        let change = core
+            .psi
+            .iter()
+            .zip(&self.viscosity_pressure)
+            .map(|(psi, p_old)| (alpha * (beta * psi.max(0.0) - p_old)).exp_m1().abs())
+            .fold(0.0, f64::max);
+        self.viscosity_pressure = core.psi.iter().map(|psi| beta * psi.max(0.0)).collect();
+        change
+    }
+
     fn steady_core(
         &mut self,
         eccentricity_ratio: [f64; 2],
@@ -977,21 +986,13 @@ impl ReynoldsSolver {
         // the low (physical) fixed point of p ∝ μ₀ exp(α p); a start from another film's
         // pressure (the grid turns with ε under the supply line) could lie above the unstable
         // high branch and run away.
-        let beta = self.params.bulk_modulus;
         let n = self.grid.len();
         self.viscosity_pressure = vec![0.0; n];
         let mut warm = None;
         let mut change = f64::INFINITY;
         for _ in 0..VISCOSITY_PICARD_MAX {
             let core = self.solve_core(eccentricity_ratio, conditions, TimeTerm::Steady, warm)?;
-            // The factor exp(α Δp) by which each node's μ would change at the new pressure.
-            change = core
-                .psi
-                .iter()
-                .zip(&self.viscosity_pressure)
-                .map(|(psi, p_old)| (alpha * (beta * psi.max(0.0) - p_old)).exp_m1().abs())
-                .fold(0.0, f64::max);
-            self.viscosity_pressure = core.psi.iter().map(|psi| beta * psi.max(0.0)).collect();
+            change = self.update_viscosity_pressure(&core, alpha);
             if change <= VISCOSITY_PICARD_TOLERANCE {
                 return Ok(core);
             }
