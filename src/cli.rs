@@ -19,7 +19,9 @@ use crate::case::compressor::Compressor;
 /// A case file (TOML, see cases/README.md) describes one bearing, its lubricant and its load,
 /// speed and feed-pressure histories. `jbearing run` solves it and writes CASE.h5 (open it with
 /// xarray or pyvista), CASE_cycle.png, CASE_orbit.png, CASE_load.png (and CASE_film.png with
-/// rigorous fields) and CASE_summary.csv.
+/// rigorous fields) and CASE_summary.csv. A mechanism case (a `[mechanism]` table: the
+/// slider-crank of Flores et al. 2009 with its rod-slider joint ideal or lubricated) writes
+/// CASE.h5, CASE_summary.csv, CASE_forces.png, CASE_orbit.png and CASE_film.png.
 ///
 /// Examples:
 ///   jbearing check cases/compressor_main.toml
@@ -27,6 +29,7 @@ use crate::case::compressor::Compressor;
 ///   jbearing batch cases/ --jobs 2 --out results/
 ///   jbearing synth-loads cases/machine/compressor.toml
 ///   jbearing closed-form cases/flores2009_simple_bearing.toml
+///   jbearing run cases/flores2009_slider_crank.toml --out results/
 #[derive(Debug, Parser)]
 #[command(name = "jbearing", version, about, long_about, verbatim_doc_comment)]
 pub struct Cli {
@@ -191,6 +194,10 @@ pub fn main_with(cli: Cli) -> ExitCode {
         Command::Run(a) => {
             // The same progress and warnings as a batch of one.
             let progress = Progress::for_stderr(!a.no_progress && !cli.quiet);
+            // A mechanism case (a `[mechanism]` table) has its own runner and outputs.
+            if crate::case::mechanism::is_mechanism_file(&a.case) {
+                return crate::mechanism::run_cli(&a.case, &a.out, progress);
+            }
             // One case as given (a sweep file is refused by the case reader: `batch` runs it).
             let job = crate::sweep::CaseJob {
                 path: a.case.clone(),
@@ -276,6 +283,13 @@ pub fn main_with(cli: Cli) -> ExitCode {
                 }
             };
             let progress = Progress::for_stderr(!a.no_progress && !cli.quiet);
+            // Mechanism cases run apart (their own outputs, a line each); the rest is the
+            // bearing batch, its summary and manifest.
+            let (mechanisms, all): (Vec<_>, Vec<_>) = all
+                .into_iter()
+                .partition(|j| crate::mechanism::job_case(j).is_some());
+            let mechanism_failed =
+                crate::mechanism::run_batch_jobs(&mechanisms, &a.out, progress, shard, a.force);
             let run = run_batch(
                 &all,
                 &BatchOptions {
@@ -335,10 +349,11 @@ pub fn main_with(cli: Cli) -> ExitCode {
                         .is_ok_and(|o| crate::batch::has_failed_method(&o.report))
                 })
                 .count();
+            let failed = failed + mechanism_failed;
             if failed > 0 || method_failed > 0 {
                 eprintln!(
                     "{failed} of {} case(s) failed, {method_failed} more with a failed method",
-                    entries.len()
+                    entries.len() + mechanisms.len()
                 );
                 ExitCode::FAILURE
             } else {
@@ -439,6 +454,32 @@ fn check(cases: &[PathBuf], out: Option<&std::path::Path>, limits: &Limits) -> E
         let sweep = jobs.iter().any(|j| j.text.is_some());
         let (mut memory, mut seconds, mut ok) = (0.0f64, 0.0, 0usize);
         for job in &jobs {
+            if let Some(m) = crate::mechanism::job_case(job) {
+                match m {
+                    Ok(case) if seen.contains_key(&case.name) => {
+                        eprintln!(
+                            "error: {}: case name '{}' is already used by {}: their output files \
+                             would overwrite each other in one batch (give each case its own name)",
+                            c.display(),
+                            case.name,
+                            seen[&case.name].display()
+                        );
+                        bad += 1;
+                    }
+                    Ok(case) => {
+                        seen.insert(case.name.clone(), c.clone());
+                        ok += 1;
+                        if !sweep {
+                            println!("{}: ok ({})", c.display(), case.describe());
+                        }
+                    }
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        bad += 1;
+                    }
+                }
+                continue;
+            }
             let case = match job.case() {
                 Ok(case) => case,
                 Err(e) => {

@@ -8,6 +8,8 @@
 //! - [`budget`]: a case's estimated memory and time, against the limits.
 //! - [`cli`]: the `jbearing` command line.
 //! - [`closed_form_report`]: the closed-form static-equilibrium table of a case.
+//! - [`mechanism`]: `jbearing run` of a mechanism case (the slider-crank of seed 004): solves,
+//!   HDF5, summary, plots.
 //! - [`merge`]: `jbearing merge`, a batch's results in one netCDF dataset along `case`.
 //! - [`output`]: the writers (HDF5, plots, CSV summary).
 //! - [`sweep`]: `[sweep]` tables expanded into named cases, and the shard of a case.
@@ -18,6 +20,7 @@ pub mod budget;
 pub mod case;
 pub mod cli;
 pub mod closed_form_report;
+pub mod mechanism;
 pub mod merge;
 pub mod output;
 pub mod run;

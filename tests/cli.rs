@@ -38,7 +38,7 @@ fn text(b: &[u8]) -> String {
 }
 
 /// One bad case per kind the application must reject with a precise message.
-const KINDS: [&str; 21] = [
+const KINDS: [&str; 28] = [
     "syntax_error",
     "unknown_key",
     "missing_key",
@@ -60,6 +60,13 @@ const KINDS: [&str; 21] = [
     "unknown_oil",
     "heat_share_out_of_range",
     "temperature_and_heat_balance",
+    "mechanism_unknown_key",
+    "mechanism_missing_viscosity",
+    "mechanism_unknown_film",
+    "mechanism_journal_too_big",
+    "mechanism_reynolds_radau5",
+    "mechanism_ideal_with_film",
+    "mechanism_rod_too_short",
 ];
 
 #[test]
@@ -97,6 +104,7 @@ fn each_bad_case_gives_its_exact_message_with_file_key_and_line() {
             "feed.",
             "operation.",
             "methods.",
+            "mechanism.",
             "version",
             "radius_m",
         ]

@@ -13,6 +13,7 @@
 
 pub mod compressor;
 pub mod error;
+pub mod mechanism;
 pub mod schema;
 pub mod units;
 pub use error::{CaseWarning, WarningKind};
@@ -893,25 +894,11 @@ fn schedule(
     Ok(None)
 }
 
-fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
-    if raw.sweep.is_some() {
-        return Err(ctx.err(
-            crate::sweep::SWEEP_TABLE,
-            "this file is a sweep, one case per point: run it with `jbearing batch` (which \
-             expands it; `jbearing check` prints the expansion)",
-        ));
-    }
-    if raw.version != 1 {
-        return Err(ctx.err(
-            "version",
-            format!(
-                "this jbearing reads case files of version 1, not {}",
-                raw.version
-            ),
-        ));
-    }
-    let name = match &raw.name {
-        Some(n) => n.clone(),
+/// The case's name: `name` as given, else the file's stem; it names the output files, so it
+/// must be usable as a file name.
+pub(crate) fn case_name(given: Option<&str>, ctx: &Ctx<'_>) -> Result<String, CaseError> {
+    let name = match given {
+        Some(n) => n.to_string(),
         None => ctx
             .file
             .file_stem()
@@ -929,6 +916,27 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             format!("'{name}' is not usable as a file name (letters, digits, '_', '-', '.')"),
         ));
     }
+    Ok(name)
+}
+
+fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
+    if raw.sweep.is_some() {
+        return Err(ctx.err(
+            crate::sweep::SWEEP_TABLE,
+            "this file is a sweep, one case per point: run it with `jbearing batch` (which \
+             expands it; `jbearing check` prints the expansion)",
+        ));
+    }
+    if raw.version != 1 {
+        return Err(ctx.err(
+            "version",
+            format!(
+                "this jbearing reads case files of version 1, not {}",
+                raw.version
+            ),
+        ));
+    }
+    let name = case_name(raw.name.as_deref(), ctx)?;
     let b = &raw.bearing;
     let radius = ctx.positive("bearing.radius_m", b.radius_m)?;
     let length = ctx.positive("bearing.length_m", b.length_m)?;

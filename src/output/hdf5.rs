@@ -662,7 +662,14 @@ impl FileWriter {
         }
     }
 
-    fn scalar(&self, g: &h5::Group, name: &str, v: f64, units: &str, long: &str) -> Res<()> {
+    pub(crate) fn scalar(
+        &self,
+        g: &h5::Group,
+        name: &str,
+        v: f64,
+        units: &str,
+        long: &str,
+    ) -> Res<()> {
         let ds = g
             .new_dataset::<f64>()
             .shape(())

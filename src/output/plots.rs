@@ -48,9 +48,9 @@ use super::{
 };
 
 static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
-const FAMILY: &str = "sans-serif";
+pub(crate) const FAMILY: &str = "sans-serif";
 
-fn ensure_font() -> Result<(), String> {
+pub(crate) fn ensure_font() -> Result<(), String> {
     static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
     REGISTERED
         .get_or_init(|| {
@@ -721,7 +721,7 @@ fn draw_panel(
 }
 
 /// Ticks of e/c: one decimal, and no "-0.0".
-fn format_unit_tick(v: f64) -> String {
+pub(crate) fn format_unit_tick(v: f64) -> String {
     if v.abs() < 0.05 {
         "0".into()
     } else {
@@ -730,7 +730,7 @@ fn format_unit_tick(v: f64) -> String {
 }
 
 /// Tick labels with as many digits as the magnitude needs.
-fn format_tick(v: f64) -> String {
+pub(crate) fn format_tick(v: f64) -> String {
     let a = v.abs();
     if a == 0.0 {
         "0".into()
@@ -748,7 +748,7 @@ fn format_tick(v: f64) -> String {
 }
 
 /// Polyline of a circle of `radius` (data units), fine enough to look round at any size.
-fn circle_points(radius: f64) -> Vec<(f64, f64)> {
+pub(crate) fn circle_points(radius: f64) -> Vec<(f64, f64)> {
     (0..=2048)
         .map(|k| {
             let a = std::f64::consts::TAU * k as f64 / 2048.0;
@@ -758,7 +758,7 @@ fn circle_points(radius: f64) -> Vec<(f64, f64)> {
 }
 
 /// An arrow head at `at`, pointing along `dir` (data units), `size` long.
-fn arrow_head(at: (f64, f64), dir: (f64, f64), size: f64) -> Option<Vec<(f64, f64)>> {
+pub(crate) fn arrow_head(at: (f64, f64), dir: (f64, f64), size: f64) -> Option<Vec<(f64, f64)>> {
     let n = dir.0.hypot(dir.1);
     if n.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return None;
