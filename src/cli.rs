@@ -302,7 +302,9 @@ pub fn main_with(cli: Cli) -> ExitCode {
                 },
             );
             let entries = &run.entries;
-            print!("{}", summary_table(entries));
+            if !all.is_empty() || mechanisms.is_empty() {
+                print!("{}", summary_table(entries));
+            }
             for j in &run.skipped {
                 println!(
                     "{:<26} skipped: {}.h5 exists (--force recomputes)",
@@ -453,8 +455,10 @@ fn check(cases: &[PathBuf], out: Option<&std::path::Path>, limits: &Limits) -> E
         };
         let sweep = jobs.iter().any(|j| j.text.is_some());
         let (mut memory, mut seconds, mut ok) = (0.0f64, 0.0, 0usize);
+        let mut mechanism = false;
         for job in &jobs {
             if let Some(m) = crate::mechanism::job_case(job) {
+                mechanism = true;
                 match m {
                     Ok(case) if seen.contains_key(&case.name) => {
                         eprintln!(
@@ -528,7 +532,15 @@ fn check(cases: &[PathBuf], out: Option<&std::path::Path>, limits: &Limits) -> E
                 );
             }
         }
-        if sweep {
+        if sweep && mechanism {
+            let keys: Vec<&str> = jobs[0].parameters.iter().map(|p| p.key.as_str()).collect();
+            println!(
+                "{}: sweep of {} mechanism cases over {} ({ok} ok)",
+                c.display(),
+                jobs.len(),
+                keys.join(", ")
+            );
+        } else if sweep {
             let keys: Vec<&str> = jobs[0].parameters.iter().map(|p| p.key.as_str()).collect();
             println!(
                 "{}: sweep of {} cases over {} ({ok} ok; estimated {} each at most, {} in all \

@@ -366,3 +366,173 @@ fn batch_runs_a_directory_of_both_kinds() {
             .collect::<Vec<_>>(),
     );
 }
+
+/// The shipped case with c 0.5 mm and 40 cP (README study table: dry contact, two onsets): the
+/// contact events in the file are the direct run's, kind by kind, and the figures shade where
+/// the contact acts.
+#[test]
+fn contact_events_reach_the_file_and_the_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let case_text = std::fs::read_to_string(root().join(CASE))
+        .unwrap()
+        .replace("name = \"flores2009_slider_crank\"", "name = \"contact\"")
+        .replace("journal_radius_m = 9.8e-3", "journal_radius_m = 9.5e-3")
+        .replace("viscosity_pa_s = 0.4", "viscosity_pa_s = 0.04");
+    let case = dir.path().join("contact.toml");
+    std::fs::write(&case, case_text).unwrap();
+    let out = jbearing(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        dir.path().to_str().unwrap(),
+        "--no-progress",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let p = MechanismParams {
+        joint: RodSliderJoint::Lubricated(
+            jbearing_solvers::mechanism::LubricatedJointParams::with_clearance(0.5e-3, 0.04),
+        ),
+        ..MechanismParams::flores2009()
+    };
+    let direct = solve_mechanism(&p).unwrap();
+    assert!(
+        direct.contact_events.len() >= 2,
+        "{:?}",
+        direct.contact_events
+    );
+    let f = h5::File::open(dir.path().join("contact.h5")).unwrap();
+    assert_same(
+        "contact_event_time",
+        &read(&f, "lubricated/contact_event_time"),
+        &direct
+            .contact_events
+            .iter()
+            .map(|e| e.time)
+            .collect::<Vec<_>>(),
+    );
+    assert_same(
+        "contact_event_radial_velocity",
+        &read(&f, "lubricated/contact_event_radial_velocity"),
+        &direct
+            .contact_events
+            .iter()
+            .map(|e| e.radial_velocity)
+            .collect::<Vec<_>>(),
+    );
+    let kinds: Vec<String> = f
+        .dataset("lubricated/contact_event_kind")
+        .unwrap()
+        .read_raw::<h5::types::VarLenUnicode>()
+        .unwrap()
+        .iter()
+        .map(|s| s.as_str().to_string())
+        .collect();
+    let want: Vec<&str> = direct
+        .contact_events
+        .iter()
+        .map(|e| match e.kind {
+            jbearing_solvers::mechanism::ContactEventKind::Onset => "onset",
+            jbearing_solvers::mechanism::ContactEventKind::Release => "release",
+        })
+        .collect();
+    assert_eq!(kinds, want);
+    assert_same(
+        "contact_weight",
+        &read(&f, "lubricated/contact_weight"),
+        &direct.contact_weight,
+    );
+    drop(f);
+    const SHADE: [u8; 3] = [255, 215, 215];
+    let film = dir.path().join("contact_film.png");
+    let (_, h, _) = png_pixels(&film);
+    assert!(count_color(&film, SHADE, 120..h) > 20_000);
+    // No contact, no shade: the shipped case.
+    let ok = tempfile::tempdir().unwrap();
+    let out = jbearing(&[
+        "run",
+        CASE,
+        "--out",
+        ok.path().to_str().unwrap(),
+        "--no-progress",
+    ]);
+    assert!(out.status.success());
+    let film = ok.path().join(format!("{NAME}_film.png"));
+    assert_eq!(count_color(&film, SHADE, 0..h), 0);
+}
+
+/// The Reynolds film through the case file (a coarse grid, one turn, BDF2 by default) gives the
+/// direct run's numbers; a sweep over a mechanism key is checked and named per point.
+#[test]
+fn reynolds_film_and_sweeps_of_mechanism_cases() {
+    let dir = tempfile::tempdir().unwrap();
+    let case_text = std::fs::read_to_string(root().join(CASE))
+        .unwrap()
+        .replace("name = \"flores2009_slider_crank\"", "name = \"reynolds\"")
+        .replace("turns = 2", "turns = 1")
+        .replace(
+            "film = \"pinkus_sternlicht\"",
+            "film = \"reynolds\"\nn_theta = 40\nn_z = 9",
+        )
+        .replace("[mechanism.integrator]\nmethod = \"radau5\"\n", "");
+    let case = dir.path().join("reynolds.toml");
+    std::fs::write(&case, &case_text).unwrap();
+    let out = jbearing(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        dir.path().to_str().unwrap(),
+        "--no-progress",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let mut p = MechanismParams::flores2009();
+    p.turns = 1;
+    let RodSliderJoint::Lubricated(j) = &mut p.joint else {
+        unreachable!()
+    };
+    let mut film = j.reynolds_params();
+    film.grid.n_theta = 40;
+    film.grid.n_z = 9;
+    j.film = jbearing_solvers::mechanism::JointFilm::Reynolds(Box::new(film));
+    p.integrator = jbearing_solvers::mechanism::Integrator::bdf2_default();
+    let direct = solve_mechanism(&p).unwrap();
+    assert!(direct.info.film_steps > 0);
+    let f = h5::File::open(dir.path().join("reynolds.h5")).unwrap();
+    assert_same(
+        "min_film_thickness",
+        &read(&f, "lubricated/min_film_thickness"),
+        &direct.min_film_thickness,
+    );
+    let film_steps: i64 = f
+        .group("lubricated")
+        .unwrap()
+        .attr("film_steps")
+        .unwrap()
+        .read_scalar()
+        .unwrap();
+    assert_eq!(film_steps as usize, direct.info.film_steps);
+    drop(f);
+
+    let sweep = dir.path().join("sweep.toml");
+    std::fs::write(
+        &sweep,
+        std::fs::read_to_string(root().join(CASE)).unwrap()
+            + "\n[sweep.values]\n\"mechanism.joint.viscosity_pa_s\" = [0.4, 0.04]\n",
+    )
+    .unwrap();
+    let out = jbearing(&["check", sweep.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert_eq!(
+        text(&out.stdout).trim(),
+        format!(
+            "{}: sweep of 2 mechanism cases over mechanism.joint.viscosity_pa_s (2 ok)",
+            sweep.display()
+        )
+    );
+    let out = jbearing(&["run", sweep.to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(
+        text(&out.stderr).contains("this file is a sweep"),
+        "{}",
+        text(&out.stderr)
+    );
+}

@@ -476,7 +476,9 @@ pub fn run_batch_jobs(
                     fmt(get("joint_force_max").and_then(main), 1.0),
                     fmt(get("crank_moment_max").and_then(main), 1.0),
                     fmt(get("min_film_thickness_min").and_then(main), 1e6),
-                    fmt(get("contact_onsets").and_then(main), 1.0),
+                    get("contact_onsets")
+                        .and_then(main)
+                        .map_or("–".to_string(), |v| format!("{v:.0}")),
                 );
             }
             Err(e) => {

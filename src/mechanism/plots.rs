@@ -5,6 +5,7 @@
 //!   ideal (dashed black);
 //! - `CASE_orbit.png` (Fig. 14): the journal-centre orbit e/c inside the clearance circle, the
 //!   contact threshold (h_min = h_b) dashed red, the start marked, a dot every 90° of crank;
+//! - every panel against crank angle shades where the dry contact acts (blend weight > 0);
 //! - `CASE_film.png` (Fig. 15): the minimum film thickness h_min against crank angle with the
 //!   paper's "safe" film ([`safe_film_thickness`], 3 µm for its joint) and the contact
 //!   threshold h_b.
@@ -33,6 +34,7 @@ const IDEAL_COLOR: RGBColor = RGBColor(20, 20, 20);
 const SAFE_COLOR: RGBColor = RGBColor(230, 140, 0);
 const CONTACT_COLOR: RGBColor = RGBColor(200, 20, 20);
 const GREY: RGBColor = RGBColor(120, 120, 120);
+const CONTACT_SHADE: RGBColor = RGBColor(255, 215, 215);
 
 /// Figure sizes (pixels).
 const FORCES_SIZE: (u32, u32) = (1400, 1100);
@@ -112,8 +114,29 @@ struct Level {
     value: f64,
 }
 
+/// Crank-angle intervals (deg) where the dry contact acts (blend weight > 0 at a sample).
+pub fn contact_windows(crank: &[f64], weight: &[f64]) -> Vec<(f64, f64)> {
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    let mut start: Option<f64> = None;
+    for (k, (&a, &w)) in crank.iter().zip(weight).enumerate() {
+        match (w > 0.0, start) {
+            (true, None) => start = Some(if k > 0 { crank[k - 1] } else { a }),
+            (false, Some(s)) => {
+                out.push((s, a));
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    if let (Some(s), Some(&last)) = (start, crank.last()) {
+        out.push((s, last));
+    }
+    out
+}
+
 /// One panel against crank angle: x over the whole run, ticks every 90°, TDC every 360°
-/// dotted, the legend in a strip above the data.
+/// dotted, the legend in a strip above the data; `shade` (crank-angle intervals) behind the
+/// data, labelled "dry contact".
 fn panel(
     area: &Area<'_>,
     heading: &str,
@@ -121,6 +144,7 @@ fn panel(
     curves: &[Curve],
     levels: &[Level],
     y_from_zero: bool,
+    shade: &[(f64, f64)],
 ) -> Result<(), String> {
     let area = area.margin(4, 8, 8, 16);
     let (head, area) = area.split_vertically(64);
@@ -136,10 +160,18 @@ fn panel(
     let entries = curves
         .iter()
         .map(|c| (c.label.as_str(), c.color, c.dashed))
-        .chain(levels.iter().map(|l| (l.label.as_str(), l.color, true)));
-    for (label, color, dashed) in entries {
+        .chain(levels.iter().map(|l| (l.label.as_str(), l.color, true)))
+        .map(|(l, c, d)| (l, c, d, false))
+        .chain((!shade.is_empty()).then_some(("dry contact", CONTACT_SHADE, false, true)));
+    for (label, color, dashed, patch) in entries {
         let y = 44;
-        if dashed {
+        if patch {
+            head.draw(&Rectangle::new(
+                [(x, y - 9), (x + 36, y + 9)],
+                color.filled(),
+            ))
+            .map_err(err)?;
+        } else if dashed {
             for k in 0..3 {
                 head.draw(&PathElement::new(
                     vec![(x + 14 * k, y), (x + 14 * k + 8, y)],
@@ -208,6 +240,14 @@ fn panel(
         .light_line_style(RGBColor(245, 245, 245))
         .draw()
         .map_err(err)?;
+    for (a, b) in shade {
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(a / QUARTER, y0), (b / QUARTER, y1)],
+                CONTACT_SHADE.filled(),
+            )))
+            .map_err(err)?;
+    }
     let mut tdc = (x0 / 360.0).ceil() * 360.0;
     while tdc <= x1 + 1e-9 {
         chart
@@ -238,8 +278,12 @@ fn panel(
                 .draw_series(DashedLineSeries::new(pts, 10, 6, style))
                 .map_err(err)?;
         } else {
+            // Segment by segment, as the orbit (no mitred spikes at impacts).
             chart
-                .draw_series(LineSeries::new(pts, style))
+                .draw_series(
+                    pts.windows(2)
+                        .map(|w| PathElement::new(vec![w[0], w[1]], style)),
+                )
                 .map_err(err)?;
         }
     }
@@ -297,6 +341,9 @@ fn draw_forces(r: &MechanismResults, path: &Path) -> Result<(), String> {
     root.fill(&WHITE).map_err(err)?;
     let body = title(&root, &subtitle(r), 56)?;
     let (a, b) = body.split_vertically(FORCES_SIZE.1.saturating_sub(56) / 2);
+    let shade = r.lubricated.as_ref().map_or_else(Vec::new, |s| {
+        contact_windows(&s.crank_angle_deg, &s.contact_weight)
+    });
     let force = curves(r, |s, i| {
         let f = s.loads[i].rod_slider;
         f[0].hypot(f[1])
@@ -308,6 +355,7 @@ fn draw_forces(r: &MechanismResults, path: &Path) -> Result<(), String> {
         &force,
         &[],
         true,
+        &shade,
     )?;
     let moment = curves(r, |s, i| s.loads[i].crank_moment);
     panel(
@@ -317,6 +365,7 @@ fn draw_forces(r: &MechanismResults, path: &Path) -> Result<(), String> {
         &moment,
         &[],
         false,
+        &shade,
     )?;
     root.present().map_err(err)
 }
@@ -364,6 +413,7 @@ fn draw_film(r: &MechanismResults, path: &Path) -> Result<(), String> {
         &h,
         &levels,
         true,
+        &contact_windows(&s.crank_angle_deg, &s.contact_weight),
     )?;
     root.present().map_err(err)
 }
@@ -429,11 +479,13 @@ fn draw_orbit(r: &MechanismResults, path: &Path) -> Result<(), String> {
         .iter()
         .map(|e| (e[0] / c, e[1] / c))
         .collect();
+    // Segment by segment: a thick polyline's mitred joins spike far out where the path turns
+    // back on itself over a few µm (an impact), drawing lines the journal never went along.
     chart
-        .draw_series(LineSeries::new(
-            pts.clone(),
-            LUBRICATED_COLOR.stroke_width(3),
-        ))
+        .draw_series(
+            pts.windows(2)
+                .map(|w| PathElement::new(vec![w[0], w[1]], LUBRICATED_COLOR.stroke_width(3))),
+        )
         .map_err(err)?;
     // A dot every 90° of crank after the first turn's start, labelled.
     let turn = r.case.params.samples_per_turn;
@@ -509,4 +561,23 @@ fn draw_orbit(r: &MechanismResults, path: &Path) -> Result<(), String> {
             .map_err(err)?;
     }
     root.present().map_err(err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::contact_windows;
+
+    #[test]
+    fn contact_windows_span_the_samples_in_contact() {
+        let crank = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+        assert_eq!(contact_windows(&crank, &[0.0; 6]), vec![]);
+        assert_eq!(
+            contact_windows(&crank, &[0.0, 0.0, 0.5, 1.0, 0.0, 0.2]),
+            vec![(1.0, 4.0), (4.0, 5.0)]
+        );
+        assert_eq!(
+            contact_windows(&crank, &[1.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
+            vec![(0.0, 1.0)]
+        );
+    }
 }
