@@ -1,10 +1,13 @@
 //! Batch runs: many cases in parallel (rayon), progress on stderr — a spinner line per case
 //! (indicatif) on a terminal, plain timestamped lines per method and cycle elsewhere (logs, CI,
 //! Slurm) — and a summary table at the end (printed and as CSV).
-//! A failing case is reported in the table and does not stop the others.
+//! A failing case is reported in the table and does not stop the others. Mechanism cases
+//! (a `[mechanism]` table, [`crate::mechanism`]) are jobs of the same list: same pool, shards,
+//! resume and manifest; their rows carry h_min and ε_max in the bearing columns and the peak
+//! joint force, crank moment and contact onsets in the message.
 //!
 //! ```text
-//!   [FILES | DIR/*.toml] ──rayon par_iter──► run_case_file (one per case, own bar)
+//!   [FILES | DIR/*.toml] ──rayon par_iter──► run_case / run_mechanism_case (one per case)
 //!                                           ├─ Ok  → row: h_min, mean flow, mean power loss, …
 //!                                           └─ Err → row: status "failed: <message>"
 //!   ──► batch_summary.csv in --out, and the same table on stdout
@@ -20,6 +23,7 @@ use rayon::prelude::*;
 
 use crate::budget::Limits;
 use crate::case::CaseWarning;
+use crate::mechanism::{MechanismOutcome, SummaryRow, run_mechanism_case};
 use crate::output::Method;
 use crate::run::{CaseOutcome, RunError, RunObserver, run_case};
 use crate::sweep::CaseJob;
@@ -32,7 +36,39 @@ pub struct BatchEntry {
     /// The case's name (a sweep point's own).
     pub name: String,
     /// Its report and files, or why it failed.
-    pub result: Result<CaseOutcome, RunError>,
+    pub result: Result<JobOutcome, RunError>,
+}
+
+/// What a case of a batch produced.
+#[derive(Debug)]
+pub enum JobOutcome {
+    /// A bearing case.
+    Bearing(Box<CaseOutcome>),
+    /// A mechanism case.
+    Mechanism(Box<MechanismOutcome>),
+}
+
+impl JobOutcome {
+    /// The bearing case's outcome (None for a mechanism case).
+    pub fn bearing(&self) -> Option<&CaseOutcome> {
+        match self {
+            JobOutcome::Bearing(o) => Some(o),
+            JobOutcome::Mechanism(_) => None,
+        }
+    }
+
+    /// Files written.
+    pub fn files(&self) -> &[PathBuf] {
+        match self {
+            JobOutcome::Bearing(o) => &o.files,
+            JobOutcome::Mechanism(o) => &o.files,
+        }
+    }
+
+    /// Whether a bearing case lacks a method it asked for.
+    pub fn has_failed_method(&self) -> bool {
+        self.bearing().is_some_and(|o| has_failed_method(&o.report))
+    }
 }
 
 /// One shard of a batch: `index` of `count` (0-based, as Slurm's array task ids).
@@ -333,14 +369,25 @@ pub fn run_batch(all: &[CaseJob], options: &BatchOptions) -> BatchRun {
                         path: job.path.display().to_string(),
                         other: other.display().to_string(),
                     }),
-                    None => job
-                        .case()
-                        .map_err(RunError::from)
-                        .and_then(|case| run_case(&case, out_dir, limits, &observer)),
+                    None => match crate::mechanism::job_case(job) {
+                        Some(case) => {
+                            let progress = |m: &str| observer.event(&job.name, m.to_string());
+                            case.map_err(RunError::from).and_then(|case| {
+                                run_mechanism_case(&case, out_dir, &progress)
+                                    .map(|o| JobOutcome::Mechanism(Box::new(o)))
+                                    .map_err(|e| RunError::Mechanism(Box::new(e)))
+                            })
+                        }
+                        None => job
+                            .case()
+                            .map_err(RunError::from)
+                            .and_then(|case| run_case(&case, out_dir, limits, &observer))
+                            .map(|o| JobOutcome::Bearing(Box::new(o))),
+                    },
                 };
                 match &result {
                     Ok(o) => {
-                        let message = format!("done, {} files", o.files.len());
+                        let message = format!("done, {} files", o.files().len());
                         observer.event(&job.name, message.clone());
                         bar.finish_with_message(message);
                     }
@@ -376,6 +423,10 @@ pub struct ManifestCase {
     pub shard: usize,
     /// Swept keys and values (empty for a plain case).
     pub parameters: Vec<(String, f64)>,
+    /// `bearing` or `mechanism` ("" in manifests written before mechanism cases joined
+    /// batches: bearing).
+    #[serde(default)]
+    pub kind: String,
     /// `ok`, `skipped` (its output existed), `failed`, or `other shard`.
     pub status: String,
     /// Why it failed ("" otherwise).
@@ -406,7 +457,10 @@ impl Manifest {
                     ("skipped".into(), String::new())
                 } else {
                     match run.entries.iter().find(|e| e.name == j.name) {
-                        Some(BatchEntry { result: Ok(o), .. }) if has_failed_method(&o.report) => (
+                        Some(BatchEntry {
+                            result: Ok(JobOutcome::Bearing(o)),
+                            ..
+                        }) if has_failed_method(&o.report) => (
                             "ok".into(),
                             method_failures(&o.report)
                                 .iter()
@@ -428,6 +482,12 @@ impl Manifest {
                         .iter()
                         .map(|p| (p.key.clone(), p.value))
                         .collect(),
+                    kind: if crate::mechanism::is_mechanism_job(j) {
+                        KIND_MECHANISM
+                    } else {
+                        KIND_BEARING
+                    }
+                    .into(),
                     status,
                     message,
                 }
@@ -439,6 +499,49 @@ impl Manifest {
             cases,
         }
     }
+}
+
+/// [`ManifestCase::kind`] of a bearing case.
+pub const KIND_BEARING: &str = "bearing";
+/// [`ManifestCase::kind`] of a mechanism case.
+pub const KIND_MECHANISM: &str = "mechanism";
+
+/// A mechanism case's rows: (method column, status, values of [`COLUMNS`], message with the
+/// peak joint force, crank moment and contact onsets), one per run (lubricated, ideal).
+fn mechanism_rows(o: &MechanismOutcome) -> Vec<(String, Vec<Option<f64>>, String)> {
+    let rows = crate::mechanism::summary_rows(&o.results);
+    let get = |n: &str| rows.iter().find(|r| r.name == n);
+    o.results
+        .runs()
+        .into_iter()
+        .map(|(run, _)| {
+            let pick = |r: &SummaryRow| {
+                if run == crate::mechanism::LUBRICATED {
+                    r.lubricated
+                } else {
+                    r.ideal
+                }
+            };
+            let v = |n: &str| get(n).and_then(pick);
+            let values = COLUMNS
+                .iter()
+                .map(|(col, _)| match *col {
+                    "min_film_thickness_min" | "eccentricity_ratio_max" => v(col),
+                    _ => None,
+                })
+                .collect();
+            let f = |x: Option<f64>| x.map_or("-".to_string(), |x| format!("{x:.6e}"));
+            let mut message = format!(
+                "mechanism: joint_force_max {} N, crank_moment_max {} N m",
+                f(v("joint_force_max")),
+                f(v("crank_moment_max"))
+            );
+            if let Some(n) = v("contact_onsets") {
+                let _ = write!(message, ", contact_onsets {n:.0}");
+            }
+            (format!("mechanism:{run}"), values, message)
+        })
+        .collect()
 }
 
 /// Columns of the summary table: (summary row, header with display units).
@@ -482,7 +585,19 @@ pub fn summary_csv(entries: &[BatchEntry]) -> String {
                 cells.push(err.to_string());
                 row(cells);
             }
-            Ok(o) => {
+            Ok(JobOutcome::Mechanism(o)) => {
+                for (method, values, message) in mechanism_rows(o) {
+                    let mut cells = vec![e.name.clone(), "ok".into(), method];
+                    cells.extend(
+                        values
+                            .iter()
+                            .map(|v| v.map(|v| format!("{v:.6e}")).unwrap_or_default()),
+                    );
+                    cells.push(message);
+                    row(cells);
+                }
+            }
+            Ok(JobOutcome::Bearing(o)) => {
                 for m in &o.report.methods {
                     let mut cells = vec![
                         o.report.case_name.clone(),
@@ -527,7 +642,23 @@ pub fn summary_table(entries: &[BatchEntry]) -> String {
             Err(err) => {
                 let _ = writeln!(s, "{name:<26} {:<10} {:<14} {err}", "-", "FAILED");
             }
-            Ok(o) => {
+            Ok(JobOutcome::Mechanism(o)) => {
+                for (method, values, message) in mechanism_rows(o) {
+                    let _ = write!(s, "{name:<26} {method:<10} {:<14}", "ok");
+                    for ((col, _), v) in COLUMNS.iter().zip(values) {
+                        match v {
+                            Some(v) => {
+                                let _ = write!(s, " {:>20.4}", v * scale(col));
+                            }
+                            None => {
+                                let _ = write!(s, " {:>20}", "–");
+                            }
+                        }
+                    }
+                    let _ = writeln!(s, "  {message}");
+                }
+            }
+            Ok(JobOutcome::Bearing(o)) => {
                 for m in &o.report.methods {
                     let _ = write!(
                         s,

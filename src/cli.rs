@@ -226,7 +226,14 @@ pub fn main_with(cli: Cli) -> ExitCode {
             );
             let entry = run.entries.remove(0);
             match entry.result {
-                Ok(o) => {
+                Ok(crate::batch::JobOutcome::Mechanism(o)) => {
+                    // Not reached (mechanism files take the branch above); said honestly.
+                    for f in &o.files {
+                        println!("wrote {}", f.display());
+                    }
+                    ExitCode::SUCCESS
+                }
+                Ok(crate::batch::JobOutcome::Bearing(o)) => {
                     for f in &o.files {
                         println!("wrote {}", f.display());
                     }
@@ -237,7 +244,7 @@ pub fn main_with(cli: Cli) -> ExitCode {
                         summary_table(&[crate::batch::BatchEntry {
                             path: a.case.clone(),
                             name: job.name.clone(),
-                            result: Ok(o),
+                            result: Ok(crate::batch::JobOutcome::Bearing(o)),
                         }])
                     );
                     if let Some(t) = &closed_form {
@@ -283,13 +290,7 @@ pub fn main_with(cli: Cli) -> ExitCode {
                 }
             };
             let progress = Progress::for_stderr(!a.no_progress && !cli.quiet);
-            // Mechanism cases run apart (their own outputs, a line each); the rest is the
-            // bearing batch, its summary and manifest.
-            let (mechanisms, all): (Vec<_>, Vec<_>) = all
-                .into_iter()
-                .partition(|j| crate::mechanism::job_case(j).is_some());
-            let mechanism_failed =
-                crate::mechanism::run_batch_jobs(&mechanisms, &a.out, progress, shard, a.force);
+            // Mechanism cases are jobs of the same list (pool, shards, resume, manifest, rows).
             let run = run_batch(
                 &all,
                 &BatchOptions {
@@ -302,9 +303,7 @@ pub fn main_with(cli: Cli) -> ExitCode {
                 },
             );
             let entries = &run.entries;
-            if !all.is_empty() || mechanisms.is_empty() {
-                print!("{}", summary_table(entries));
-            }
+            print!("{}", summary_table(entries));
             for j in &run.skipped {
                 println!(
                     "{:<26} skipped: {}.h5 exists (--force recomputes)",
@@ -345,17 +344,12 @@ pub fn main_with(cli: Cli) -> ExitCode {
             let failed = entries.iter().filter(|e| e.result.is_err()).count();
             let method_failed = entries
                 .iter()
-                .filter(|e| {
-                    e.result
-                        .as_ref()
-                        .is_ok_and(|o| crate::batch::has_failed_method(&o.report))
-                })
+                .filter(|e| e.result.as_ref().is_ok_and(|o| o.has_failed_method()))
                 .count();
-            let failed = failed + mechanism_failed;
             if failed > 0 || method_failed > 0 {
                 eprintln!(
                     "{failed} of {} case(s) failed, {method_failed} more with a failed method",
-                    entries.len() + mechanisms.len()
+                    entries.len()
                 );
                 ExitCode::FAILURE
             } else {

@@ -6,6 +6,7 @@
 //!   DIR/CASE.h5           (each solved case)
 //!        ──► expected cases = the manifests' list (expansion order), status per case:
 //!            ok | failed: <why> | missing: <no manifest for its shard / no CASE.h5>
+//!            | ok (mechanism case: not merged) (listed, its numbers left NaN)
 //!        ──► FILE.nc:
 //!   case(case)                          case names
 //!   <swept key>(case)                   e.g. radial_clearance_m, supply_temperature_c
@@ -84,7 +85,10 @@ pub struct MergeInfo {
 impl MergeInfo {
     /// The cases that are not "ok".
     pub fn incomplete(&self) -> Vec<&(String, String)> {
-        self.cases.iter().filter(|(_, s)| s != "ok").collect()
+        self.cases
+            .iter()
+            .filter(|(_, s)| s != "ok" && s != MECHANISM_NOT_MERGED)
+            .collect()
     }
 }
 
@@ -200,6 +204,9 @@ fn read_manifests(dirs: &[PathBuf]) -> Result<Vec<(PathBuf, Manifest)>, MergeErr
     Ok(found)
 }
 
+/// Status of a mechanism case whose `CASE.h5` is there (its numbers are not merged).
+pub const MECHANISM_NOT_MERGED: &str = "ok (mechanism case: not merged)";
+
 /// Merge the batch results in `dirs` into `out` (written atomically); the status of every case.
 pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeInfo, MergeError> {
     let manifests = read_manifests(dirs)?;
@@ -256,6 +263,14 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeInfo, MergeError> {
                 None,
             ),
             Some(c) if c.status == "failed" => (format!("failed: {}", c.message), None),
+            // Mechanism cases have no bearing-case groups to merge: listed, not merged.
+            Some(c) if c.kind == crate::batch::KIND_MECHANISM => match find_h5(&case.name) {
+                Some(_) => (MECHANISM_NOT_MERGED.to_string(), None),
+                None => (
+                    format!("missing: no {}.h5 in the directories given", case.name),
+                    None,
+                ),
+            },
             Some(_) => match find_h5(&case.name) {
                 Some(p) => ("ok".to_string(), Some(read_case(&p)?)),
                 None => (

@@ -137,6 +137,9 @@ pub enum RunError {
     /// The case's estimated cost is above the limits.
     #[error(transparent)]
     Budget(#[from] BudgetError),
+    /// A mechanism case of a batch failed.
+    #[error(transparent)]
+    Mechanism(#[from] Box<crate::mechanism::MechanismRunError>),
     /// Writing the results failed.
     #[error(transparent)]
     Output(#[from] OutputError),

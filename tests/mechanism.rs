@@ -334,11 +334,11 @@ fn batch_runs_a_directory_of_both_kinds() {
     );
     let stdout = text(&out.stdout);
     assert!(
-        stdout.contains(&format!("{NAME:<26} mechanism  ok")),
+        stdout.contains(&format!("{NAME:<26} mechanism:lubricated ok")),
         "{stdout}"
     );
     assert!(
-        stdout.contains(&format!("{:<26} mechanism  ok", "ideal_crank")),
+        stdout.contains(&format!("{:<26} mechanism:ideal ok", "ideal_crank")),
         "{stdout}"
     );
     for f in [
@@ -492,8 +492,10 @@ fn reynolds_film_and_sweeps_of_mechanism_cases() {
     let mut film = j.reynolds_params();
     film.grid.n_theta = 40;
     film.grid.n_z = 9;
+    let p_cav = film.cavitation_pressure;
     j.film = jbearing_solvers::mechanism::JointFilm::Reynolds(Box::new(film));
     p.integrator = jbearing_solvers::mechanism::Integrator::bdf2_default();
+    p.field_snapshots = jbearing_solvers::mechanism::DEFAULT_FIELD_SNAPSHOTS;
     let direct = solve_mechanism(&p).unwrap();
     assert!(direct.info.film_steps > 0);
     let f = h5::File::open(dir.path().join("reynolds.h5")).unwrap();
@@ -510,6 +512,65 @@ fn reynolds_film_and_sweeps_of_mechanism_cases() {
         .read_scalar()
         .unwrap();
     assert_eq!(film_steps as usize, direct.info.film_steps);
+
+    // Film fields: 24 instants of the (last) turn on the 40 × 9 grid, the direct run's
+    // snapshots, with units, long names and dimension scales; p ≥ p_cav everywhere.
+    let snaps = direct
+        .film_fields
+        .as_ref()
+        .expect("Reynolds film snapshots");
+    assert_eq!(snaps.fields.len(), 24);
+    let tau = 60.0 / 5000.0;
+    assert!((snaps.time[23] - tau).abs() < 1e-12 && (snaps.time[0] - tau / 24.0).abs() < 1e-12);
+    assert_same(
+        "field_time",
+        &read(&f, "lubricated/fields/field_time"),
+        &snaps.time,
+    );
+    assert_same(
+        "field_crank_angle",
+        &read(&f, "lubricated/fields/field_crank_angle"),
+        &snaps.crank_angle_deg,
+    );
+    assert_same("theta", &read(&f, "lubricated/fields/theta"), &snaps.theta);
+    assert_same("z", &read(&f, "lubricated/fields/z"), &snaps.z);
+    assert_eq!(snaps.theta.len(), 40);
+    assert_eq!(snaps.z.len(), 9);
+    for (name, units, get) in [
+        (
+            "pressure",
+            "Pa",
+            (|x| &x.pressure)
+                as fn(&jbearing_solvers::inverse::FilmFields) -> &ndarray::Array2<f64>,
+        ),
+        ("film_content", "1", |x| &x.film_fraction),
+    ] {
+        let ds = f.dataset(&format!("lubricated/fields/{name}")).unwrap();
+        assert_eq!(ds.shape(), vec![24, 40, 9], "{name}");
+        assert_eq!(attr(&ds, "units").as_deref(), Some(units), "{name}");
+        assert!(attr(&ds, "long_name").is_some_and(|l| !l.is_empty()));
+        assert!(
+            ds.attr("DIMENSION_LIST").is_ok(),
+            "{name}: no dimension scales"
+        );
+        let want: Vec<f64> = snaps
+            .fields
+            .iter()
+            .flat_map(|fl| get(fl).iter().copied().collect::<Vec<_>>())
+            .collect();
+        let got = ds.read_raw::<f64>().unwrap();
+        assert_same(name, &got, &want);
+        if name == "pressure" {
+            assert!(got.iter().all(|&v| v >= p_cav), "p < p_cav");
+            // The film carries the load: a real pressure peak at every instant.
+            for k in 0..24 {
+                let peak = got[k * 360..(k + 1) * 360]
+                    .iter()
+                    .fold(0.0f64, |m, &v| m.max(v));
+                assert!(peak > 1e5, "instant {k}: peak {peak} Pa");
+            }
+        }
+    }
     drop(f);
 
     let sweep = dir.path().join("sweep.toml");

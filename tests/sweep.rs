@@ -210,3 +210,112 @@ fn bad_shard_arguments_are_refused() {
         );
     }
 }
+
+/// A batch of a bearing sweep (6 cases) and a mechanism case over two shards: every case runs
+/// in exactly one shard (the mechanism case by its name too), the summaries and manifests
+/// list it there, and the merge lists all seven, the mechanism case as not merged.
+#[test]
+fn mechanism_cases_are_jobs_of_a_sharded_batch() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = dir.path().join("cases");
+    std::fs::create_dir(&cases).unwrap();
+    sweep_case(&cases);
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mech = std::fs::read_to_string(root.join("cases/flores2009_slider_crank.toml"))
+        .unwrap()
+        .replace("name = \"flores2009_slider_crank\"", "name = \"crank\"")
+        .replace("turns = 2", "turns = 1\nplots = false");
+    assert!(mech.contains("plots = false"));
+    std::fs::write(cases.join("crank.toml"), mech).unwrap();
+    let out = dir.path().join("out");
+    let (c, o) = (cases.to_str().unwrap(), out.to_str().unwrap());
+    let mut ran = std::collections::HashMap::<String, usize>::new();
+    for i in 0..2 {
+        let shard = format!("{i}/2");
+        let r = jbearing(&["batch", c, "--shard", &shard, "--out", o, "--no-progress"]);
+        assert!(r.status.success(), "shard {i}: {}", text(&r.stderr));
+        let manifest: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(out.join(format!("shard_{i}_of_2.json"))).unwrap(),
+        )
+        .unwrap();
+        let list = manifest["cases"].as_array().unwrap();
+        assert_eq!(list.len(), 7, "every case of the batch in each manifest");
+        let csv = std::fs::read_to_string(out.join(format!("shard_{i}_of_2_summary.csv"))).unwrap();
+        for case in list {
+            let name = case["name"].as_str().unwrap();
+            let kind = case["kind"].as_str().unwrap();
+            assert_eq!(kind == "mechanism", name == "crank", "{name}: kind {kind}");
+            match case["status"].as_str().unwrap() {
+                "ok" => {
+                    assert_eq!(case["shard"].as_u64(), Some(i));
+                    *ran.entry(name.to_string()).or_default() += 1;
+                    assert!(
+                        csv.lines().any(|l| l.starts_with(&format!("{name},ok,"))),
+                        "{name} has no row in shard {i}: {csv}"
+                    );
+                }
+                "other shard" => {
+                    assert_ne!(case["shard"].as_u64(), Some(i));
+                    assert!(!csv.lines().any(|l| l.starts_with(&format!("{name},"))));
+                }
+                s => panic!("{name}: status {s}"),
+            }
+        }
+    }
+    assert_eq!(ran.len(), 7, "{ran:?}");
+    assert!(ran.values().all(|&n| n == 1), "{ran:?}");
+    // The mechanism case's row: h_min and ε_max in the bearing columns, the peak force named.
+    let csvs: String = (0..2)
+        .map(|i| std::fs::read_to_string(out.join(format!("shard_{i}_of_2_summary.csv"))).unwrap())
+        .collect();
+    let row = csvs
+        .lines()
+        .find(|l| l.starts_with("crank,ok,mechanism:lubricated,"))
+        .expect("mechanism row");
+    let cells: Vec<&str> = row.split(',').collect();
+    let h: f64 = cells[3].parse().unwrap();
+    assert!(h > 0.0 && h < 0.2e-3, "h_min {h}");
+    let eps: f64 = cells[6].parse().unwrap();
+    assert!(eps > 0.0 && eps < 1.0, "eps {eps}");
+    assert!(row.contains("joint_force_max"), "{row}");
+    // Resume: a re-run skips the mechanism case too.
+    let again = jbearing(&["batch", c, "--shard", "0/2", "--out", o, "--no-progress"]);
+    assert!(again.status.success());
+    let again = jbearing(&["batch", c, "--shard", "1/2", "--out", o, "--no-progress"]);
+    assert!(again.status.success());
+    let skipped: usize = (0..2)
+        .map(|i| {
+            std::fs::read_to_string(out.join(format!("shard_{i}_of_2.json")))
+                .unwrap()
+                .matches("\"skipped\"")
+                .count()
+        })
+        .sum();
+    assert_eq!(skipped, 7);
+
+    let nc = dir.path().join("all.nc");
+    let m = jbearing(&["merge", o, "--out", nc.to_str().unwrap()]);
+    assert!(m.status.success(), "{}", text(&m.stderr));
+    assert!(
+        text(&m.stdout).contains("7 cases, 7 ok"),
+        "{}",
+        text(&m.stdout)
+    );
+    let f = hdf5_metno::File::open(&nc).unwrap();
+    let names: Vec<hdf5_metno::types::VarLenUnicode> =
+        f.dataset("case").unwrap().read_raw().unwrap();
+    let status: Vec<hdf5_metno::types::VarLenUnicode> =
+        f.dataset("status").unwrap().read_raw().unwrap();
+    let k = names
+        .iter()
+        .position(|n| n.as_str() == "crank")
+        .expect("crank listed");
+    assert_eq!(status[k].as_str(), "ok (mechanism case: not merged)");
+    assert!(
+        status
+            .iter()
+            .enumerate()
+            .all(|(j, s)| j == k || s.as_str() == "ok"),
+        "{status:?}"
+    );
+}

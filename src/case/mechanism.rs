@@ -75,6 +75,8 @@ pub struct MechanismSection {
     /// Write the PNG plots.
     #[serde(default = "default_true")]
     pub plots: bool,
+    /// Film field snapshots over the last turn (Reynolds film; default 24, 0: none).
+    pub field_snapshots: Option<usize>,
     /// Run the ideal mechanism too, as the reference of the lubricated one.
     #[serde(default = "default_true")]
     pub ideal_reference: bool,
@@ -661,6 +663,33 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
             method
         }
     };
+    if let Some(n) = m.field_snapshots {
+        let reynolds = matches!(
+            &params.joint,
+            RodSliderJoint::Lubricated(LubricatedJointParams {
+                film: JointFilm::Reynolds(_),
+                ..
+            })
+        );
+        if n > 0 && !reynolds {
+            return Err(ctx.err(
+                "mechanism.field_snapshots",
+                "film fields exist for joint.film = \"reynolds\" only",
+            ));
+        }
+        if let Integrator::Bdf2 { steps_per_turn, .. } = params.integrator
+            && n > steps_per_turn
+        {
+            return Err(ctx.err(
+                "mechanism.field_snapshots",
+                format!("at most steps_per_turn ({steps_per_turn}) instants"),
+            ));
+        }
+        params.field_snapshots = n;
+    } else if let Integrator::Bdf2 { steps_per_turn, .. } = params.integrator {
+        // The default, on a coarser time grid: one snapshot per step.
+        params.field_snapshots = params.field_snapshots.min(steps_per_turn);
+    }
     Ok(MechanismCase {
         name,
         description: raw.description.clone().unwrap_or_default(),

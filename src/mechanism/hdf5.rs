@@ -26,21 +26,26 @@
 //! │   │  contact_event(contact_event)       index (may be empty)
 //! │   │  contact_event_time [s], contact_event_crank_angle [degree],
 //! │   │  contact_event_kind ("onset"/"release"), contact_event_radial_velocity [m s-1]
+//! │   └── fields/        Reynolds film only, `field_snapshots` instants of the last turn
+//! │      field_crank_angle(field_crank_angle) [degree]  dimension, not wrapped
+//! │      field_time(field_crank_angle) [s]              auxiliary coordinate
+//! │      theta(theta) [rad], z(z) [m]                   the film grid
+//! │      pressure(field_crank_angle, theta, z) [Pa]     gauge, p ≥ p_cav
+//! │      film_content(field_crank_angle, theta, z) [1] density ratio / film fraction
 //! └── ideal/             as lubricated/ without the orbit, film and contact variables
 //! ```
 //!
-//! Film fields (pressure, film content) of a Reynolds-film run are not written: the solver's
-//! [`MechanismSolution`] does not keep them.
+//! The `fields/` group is the one bearing cases write (`FileWriter::write_fields`).
 
 use std::path::Path;
 
 use hdf5_metno as h5;
 use jbearing_solvers::mechanism::{ContactEventKind, JointFilm, MechanismSolution, RodSliderJoint};
-use ndarray::Array2;
+use ndarray::{Array2, Array3};
 
 use super::{IDEAL, LUBRICATED, MechanismResults};
 use crate::output::hdf5::FileWriter;
-use crate::output::{OutputError, write_atomically};
+use crate::output::{Field, FieldSnapshots, OutputError, names, write_atomically};
 
 type Res<T> = Result<T, OutputError>;
 
@@ -552,5 +557,36 @@ fn write_run(
         &dim,
         "onset (h_min fell to the boundary layer) or release",
     )?;
+    if let Some(ff) = &s.film_fields {
+        w.write_fields(&g, name, &field_snapshots(ff))?;
+    }
     Ok(())
+}
+
+/// The solver's film snapshots as the bearing cases' [`FieldSnapshots`].
+fn field_snapshots(ff: &jbearing_solvers::mechanism::MechanismFilmFields) -> FieldSnapshots {
+    let (nt, nth, nz) = (ff.fields.len(), ff.theta.len(), ff.z.len());
+    let stack = |get: fn(&jbearing_solvers::inverse::FilmFields) -> &Array2<f64>| {
+        Array3::from_shape_fn((nt, nth, nz), |(k, i, j)| get(&ff.fields[k])[[i, j]])
+    };
+    FieldSnapshots {
+        time: ff.time.clone(),
+        crank_angle: ff.crank_angle_deg.clone(),
+        theta: ff.theta.clone(),
+        z: ff.z.clone(),
+        fields: vec![
+            Field {
+                name: names::PRESSURE.into(),
+                long_name: "film pressure of the rod-slider joint, gauge".into(),
+                units: "Pa".into(),
+                values: stack(|f| &f.pressure),
+            },
+            Field {
+                name: names::FILM_CONTENT.into(),
+                long_name: "film content (density ratio / film fraction)".into(),
+                units: "1".into(),
+                values: stack(|f| &f.film_fraction),
+            },
+        ],
+    }
 }

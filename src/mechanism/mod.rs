@@ -23,7 +23,7 @@ use jbearing_solvers::mechanism::{
     ContactEventKind, MechanismError, MechanismSolution, RodSliderJoint, solve_mechanism,
 };
 
-use crate::batch::{Progress, Shard};
+use crate::batch::Progress;
 use crate::case::CaseError;
 use crate::case::mechanism::{MechanismCase, is_mechanism_text};
 use crate::output::{OutputError, write_atomically};
@@ -398,6 +398,15 @@ pub fn job_case(job: &CaseJob) -> Option<Result<MechanismCase, CaseError>> {
     })
 }
 
+/// Whether a batch job is a mechanism case (its text has a `[mechanism]` table; false when
+/// the file cannot be read).
+pub fn is_mechanism_job(job: &CaseJob) -> bool {
+    match &job.text {
+        Some(t) => is_mechanism_text(t),
+        None => crate::case::mechanism::is_mechanism_file(&job.path),
+    }
+}
+
 /// A progress printer for `run` and `batch`: plain lines `[elapsed] CASE: message` on stderr
 /// (the solver reports no steps, so a terminal gets the same lines), nothing when hidden.
 pub fn progress_printer(progress: Progress, case: &str) -> impl Fn(&str) + use<> {
@@ -437,55 +446,4 @@ pub fn run_cli(path: &Path, out_dir: &Path, progress: Progress) -> std::process:
             std::process::ExitCode::FAILURE
         }
     }
-}
-
-/// The mechanism cases of a batch (`jobs`: those [`job_case`] recognises), one after the other
-/// (each is milliseconds with a closed-form film): this shard's, skipping those whose
-/// `CASE.h5` exists unless `force`. Prints a line per case; returns the number that failed.
-pub fn run_batch_jobs(
-    jobs: &[CaseJob],
-    out_dir: &Path,
-    progress: Progress,
-    shard: Shard,
-    force: bool,
-) -> usize {
-    let mut failed = 0;
-    for job in jobs.iter().filter(|j| shard.holds(&j.name)) {
-        if !force && out_dir.join(format!("{}.h5", job.name)).is_file() {
-            println!(
-                "{:<26} skipped: {}.h5 exists (--force recomputes)",
-                job.name, job.name
-            );
-            continue;
-        }
-        let Some(case) = job_case(job) else { continue };
-        let result = case
-            .map_err(MechanismRunError::from)
-            .and_then(|c| run_mechanism_case(&c, out_dir, &progress_printer(progress, &c.name)));
-        match result {
-            Ok(o) => {
-                let rows = summary_rows(&o.results);
-                let get = |n: &str| rows.iter().find(|r| r.name == n);
-                let fmt = |v: Option<f64>, scale: f64| {
-                    v.map_or("–".to_string(), |v| format!("{:.4}", v * scale))
-                };
-                let main = |r: &SummaryRow| r.lubricated.or(r.ideal);
-                println!(
-                    "{:<26} mechanism  ok             |F|max {} N, |M|max {} N m, h_min,min {} µm, contact onsets {}",
-                    job.name,
-                    fmt(get("joint_force_max").and_then(main), 1.0),
-                    fmt(get("crank_moment_max").and_then(main), 1.0),
-                    fmt(get("min_film_thickness_min").and_then(main), 1e6),
-                    get("contact_onsets")
-                        .and_then(main)
-                        .map_or("–".to_string(), |v| format!("{v:.0}")),
-                );
-            }
-            Err(e) => {
-                failed += 1;
-                println!("{:<26} mechanism  FAILED         {e}", job.name);
-            }
-        }
-    }
-    failed
 }

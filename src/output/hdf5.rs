@@ -413,7 +413,14 @@ impl FileWriter {
         Ok(())
     }
 
-    fn write_fields(&mut self, parent: &h5::Group, method: &str, f: &FieldSnapshots) -> Res<()> {
+    /// `fields/` under `parent`: `field_crank_angle` (dimension) with `field_time`, `theta`,
+    /// `z` and one (instant, θ, z) variable per field; `method` names the group in messages.
+    pub(crate) fn write_fields(
+        &mut self,
+        parent: &h5::Group,
+        method: &str,
+        f: &FieldSnapshots,
+    ) -> Res<()> {
         let g = parent
             .create_group("fields")
             .map_err(self.err(format!("group {method}/fields")))?;

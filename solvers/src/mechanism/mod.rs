@@ -314,6 +314,9 @@ impl Integrator {
     }
 }
 
+/// Film field snapshots per run of a Reynolds film by default (every 15° of the last turn).
+pub const DEFAULT_FIELD_SNAPSHOTS: usize = 24;
+
 /// Everything a mechanism run needs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MechanismParams {
@@ -327,18 +330,23 @@ pub struct MechanismParams {
     pub samples_per_turn: usize,
     /// Time integration (ignored for the ideal joint).
     pub integrator: Integrator,
+    /// Film field snapshots over the last turn ([`MechanismSolution::film_fields`]): this many
+    /// instants, evenly spaced in time and ending at the end of the run (each on the nearest
+    /// time step). Reynolds film only (ignored for closed forms and the ideal joint); 0: none.
+    /// At most the BDF2 `steps_per_turn`.
+    pub field_snapshots: usize,
 }
 
 impl MechanismParams {
     /// Two turns, 360 samples per turn, and the integrator that suits the joint: Radau5 for a
     /// closed-form film, BDF2 at 360 steps per turn for the Reynolds film.
     pub fn new(mechanism: SliderCrankParams, joint: RodSliderJoint) -> Self {
-        let integrator = match &joint {
+        let (integrator, field_snapshots) = match &joint {
             RodSliderJoint::Lubricated(LubricatedJointParams {
                 film: JointFilm::Reynolds(_),
                 ..
-            }) => Integrator::bdf2_default(),
-            _ => Integrator::radau5_default(),
+            }) => (Integrator::bdf2_default(), DEFAULT_FIELD_SNAPSHOTS),
+            _ => (Integrator::radau5_default(), 0),
         };
         Self {
             mechanism,
@@ -346,6 +354,7 @@ impl MechanismParams {
             turns: 2,
             samples_per_turn: 360,
             integrator,
+            field_snapshots,
         }
     }
 
@@ -433,6 +442,25 @@ pub struct MechanismSolution {
     pub contact_events: Vec<ContactEvent>,
     /// Counters and extremes.
     pub info: MechanismInfo,
+    /// Fields of the Reynolds film at [`MechanismParams::field_snapshots`] instants of the last
+    /// turn; None for closed-form films, the ideal joint and `field_snapshots = 0`.
+    pub film_fields: Option<MechanismFilmFields>,
+}
+
+/// Snapshots of the Reynolds film of the joint: the fields of the accepted film step at each
+/// instant (in dry contact the film's ε is clamped to the end of the blend band).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct MechanismFilmFields {
+    /// Time of each instant (s, from the start of the run).
+    pub time: Vec<f64>,
+    /// Crank angle of each instant (deg, not wrapped).
+    pub crank_angle_deg: Vec<f64>,
+    /// θ of the grid columns (rad, bearing frame, from +x).
+    pub theta: Vec<f64>,
+    /// z of the grid rows (m, from the mid-plane; the end rows are the bearing ends).
+    pub z: Vec<f64>,
+    /// The fields of each instant, indexed [i_θ, i_z].
+    pub fields: Vec<crate::inverse::FilmFields>,
 }
 
 /// What can go wrong in a mechanism run.

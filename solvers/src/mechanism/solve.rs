@@ -5,10 +5,10 @@ use super::contact::{blend_weight, lankarani_nikravesh};
 use super::slider_crank::{Configuration, SliderCrankParams};
 use super::{
     ContactEvent, ContactEventKind, Integrator, JointFilm, LubricatedJointParams, MechanismError,
-    MechanismInfo, MechanismParams, MechanismSolution, RodSliderJoint,
+    MechanismFilmFields, MechanismInfo, MechanismParams, MechanismSolution, RodSliderJoint,
 };
 use crate::closed_form::{ClosedFormModel, ClosedFormParams, JournalMotion, film_force};
-use crate::inverse::{FilmConditions, FilmModel, ReynoldsFilm};
+use crate::inverse::{FilmConditions, FilmFields, FilmModel, ReynoldsFilm};
 use crate::reynolds::FilmState;
 use differential_equations::prelude::{
     CrossingDirection, Event, EventConfig, IVP, ImplicitRungeKutta, ODE, Status,
@@ -581,6 +581,8 @@ struct Trial {
     /// whole residual are used).
     film_jacobian: Option<[[f64; 2]; 2]>,
     film_state: Option<FilmState>,
+    /// The film's fields (Reynolds film asked to capture them).
+    film_fields: Option<FilmFields>,
 }
 
 fn solve2(j: [[f64; 2]; 2], r: [f64; 2]) -> Option<[f64; 2]> {
@@ -650,6 +652,34 @@ fn solve_bdf2(
         impact: floor,
     };
 
+    // Film field snapshots: steps base + round(k · steps_per_turn / N), k = 1 … N, of the last
+    // turn (distinct for N ≤ steps_per_turn).
+    let n_fields = match film {
+        Film::Reynolds(_) => params.field_snapshots,
+        Film::Closed(_) => 0,
+    };
+    if n_fields > steps_per_turn {
+        return Err(MechanismError::InvalidParameter {
+            name: "field_snapshots (at most steps_per_turn)",
+            value: n_fields as f64,
+        });
+    }
+    let base = (params.turns - 1) * steps_per_turn;
+    let snapshot_steps: Vec<usize> = (1..=n_fields)
+        .map(|k| base + (k * steps_per_turn + n_fields / 2) / n_fields)
+        .collect();
+    let mut film_fields = match film {
+        Film::Reynolds(b) if n_fields > 0 => {
+            let solver = b.0.solver_mut();
+            Some(MechanismFilmFields {
+                theta: solver.theta_nodes(),
+                z: solver.z_nodes(),
+                ..Default::default()
+            })
+        }
+        _ => None,
+    };
+
     // Sample at t = 0: the ideal configuration (e = 0, ė = 0), force of the film at rest.
     {
         let k = mech.configuration(0.0, [0.0; 2], [0.0; 2])?;
@@ -660,7 +690,11 @@ fn solve_bdf2(
 
     for n in 0..n_steps {
         let t1 = (n + 1) as f64 * dt;
-        let trial = advance(
+        let snapshot = film_fields.is_some() && snapshot_steps.binary_search(&(n + 1)).is_ok();
+        if let (true, Film::Reynolds(b)) = (snapshot, &mut *film) {
+            b.0.set_capture_fields(true);
+        }
+        let mut trial = advance(
             model,
             film,
             &mut hist,
@@ -670,6 +704,20 @@ fn solve_bdf2(
             &mut info,
             &mut events,
         )?;
+        if let (true, Film::Reynolds(b)) = (snapshot, &mut *film) {
+            b.0.set_capture_fields(false);
+            if let Some(ff) = film_fields.as_mut() {
+                let fields = trial
+                    .film_fields
+                    .take()
+                    .ok_or(MechanismError::Unsupported {
+                        what: "the Reynolds film returned no fields at a snapshot",
+                    })?;
+                ff.time.push(t1);
+                ff.crank_angle_deg.push(model.crank_deg(t1));
+                ff.fields.push(fields);
+            }
+        }
         if (n + 1) % stride == 0 {
             let eps = hist.eps[0];
             let rate = hist.rate[0];
@@ -692,6 +740,7 @@ fn solve_bdf2(
     out.contact_weight = weights;
     out.contact_events = events;
     out.info = info;
+    out.film_fields = film_fields;
     out.check_finite()?;
     out.finish(Some(c), Some(params.samples_per_turn));
     Ok(out)
@@ -956,6 +1005,7 @@ fn evaluate_bdf2(
     let ed = [c * rate[0], c * rate[1]];
     let mut film_jacobian = None;
     let mut film_state = None;
+    let mut film_fields = None;
     let (g, k, acc, force) = match film {
         Film::Closed(m) => {
             let m = *m;
@@ -977,6 +1027,7 @@ fn evaluate_bdf2(
             let feeds = *feeds;
             let mut jac_slot = None;
             let mut state_slot = None;
+            let mut fields_slot = None;
             let res = model.eps_acceleration(t, eps, rate, |k| {
                 let cond = FilmConditions {
                     journal_speed: k.rod_rate,
@@ -986,6 +1037,7 @@ fn evaluate_bdf2(
                 info.film_steps += 1;
                 let (resp, next) = rf.step(state, fe, dt, &cond).map_err(|e| e.to_string())?;
                 state_slot = Some(next);
+                fields_slot = resp.fields;
                 let f = resp.film_force;
                 let out = model.blend(e, ed, impact, || Ok(f))?;
                 if want_jacobian && out.weight < 1.0 {
@@ -994,6 +1046,7 @@ fn evaluate_bdf2(
                 Ok(out)
             })?;
             film_state = state_slot;
+            film_fields = fields_slot;
             if let Some(j) = jac_slot {
                 film_jacobian = Some(j.map_err(|reason| MechanismError::Film {
                     time: t,
@@ -1014,6 +1067,7 @@ fn evaluate_bdf2(
         force,
         film_jacobian,
         film_state,
+        film_fields,
     })
 }
 

@@ -586,6 +586,12 @@ impl ReynoldsSolver {
             .collect()
     }
 
+    /// z of the grid rows (m, from the mid-plane): the end rows are the bearing ends, the
+    /// others the centres of their cells.
+    pub fn z_nodes(&self) -> Vec<f64> {
+        (0..self.params.grid.n_z).map(|j| self.grid.z(j)).collect()
+    }
+
     /// A full film at ambient pressure (φ = 1 + (p_amb − p_cav)/β, g = 1) at ε.
     pub fn initial_state(&self, eccentricity_ratio: [f64; 2]) -> FilmState {
         let GridParams { n_theta, n_z } = self.params.grid;
