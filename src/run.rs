@@ -735,9 +735,12 @@ fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> 
         theta: (0..nt)
             .map(|i| std::f64::consts::TAU * i as f64 / nt as f64)
             .collect(),
-        z: (0..nz)
-            .map(|j| -0.5 * case.length + case.length * j as f64 / (nz - 1) as f64)
-            .collect(),
+        // The film grid's own rows: the end rows are the bearing ends, the inner rows the
+        // centres of n_z − 2 equal cells (reynolds::grid), not n_z evenly spaced points.
+        z: jbearing_solvers::reynolds::ReynoldsSolver::new(reynolds_params(case))
+            .ok()
+            .map(|s| s.z_nodes())
+            .filter(|z| z.len() == nz)?,
         fields,
     })
 }

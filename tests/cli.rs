@@ -948,6 +948,21 @@ fn temperature_and_viscosity_fields_are_written() {
             d.attr("units").unwrap().read_scalar().unwrap();
         (d.read_raw().unwrap(), units.as_str().to_owned())
     };
+    // The z coordinate is the film grid's: the bearing ends, and the centres of the 7 equal
+    // cells between them (n_z = 9, L = 20 mm).
+    let z: Vec<f64> = f.dataset("rigorous/fields/z").unwrap().read_raw().unwrap();
+    let dz = 0.02 / 7.0;
+    let want: Vec<f64> = (0..9)
+        .map(|j| match j {
+            0 => -0.01,
+            8 => 0.01,
+            _ => -0.01 + (j as f64 - 0.5) * dz,
+        })
+        .collect();
+    assert!(
+        z.iter().zip(&want).all(|(a, b)| (a - b).abs() < 1e-15),
+        "{z:?} vs {want:?}"
+    );
     let (t, t_units) = read("temperature");
     let (mu, mu_units) = read("viscosity");
     let (p, _) = read("pressure");
