@@ -9,20 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 mod common;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn jbearing(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_jbearing"))
-        .args(args)
-        .current_dir(root())
-        .env("NO_COLOR", "1")
-        .env_remove("RUST_LOG")
-        .output()
-        .expect("run jbearing")
-}
+use common::{jbearing, root, text};
 
 /// `jbearing run CASE --out OUT EXTRA…`.
 fn run_into(case: impl AsRef<Path>, out: &Path, extra: &[&str]) -> Output {
@@ -31,10 +18,6 @@ fn run_into(case: impl AsRef<Path>, out: &Path, extra: &[&str]) -> Output {
     let mut args = vec!["run", case, "--out", out];
     args.extend_from_slice(extra);
     jbearing(&args)
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
 }
 
 /// One bad case per kind the application must reject with a precise message.

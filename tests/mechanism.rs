@@ -5,9 +5,6 @@
 //! variable; the summary CSV holds the direct run's extremes; the figures show the curves and
 //! the reference lines. Bad mechanism case files are in `tests/bad_cases/` (`tests/cli.rs`).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
 use hdf5_metno as h5;
 use jbearing_solvers::mechanism::{
     MechanismParams, MechanismSolution, RodSliderJoint, solve_mechanism,
@@ -16,23 +13,8 @@ use jbearing_solvers::mechanism::{
 const CASE: &str = "cases/flores2009_slider_crank.toml";
 const NAME: &str = "flores2009_slider_crank";
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn jbearing(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_jbearing"))
-        .args(args)
-        .current_dir(root())
-        .env("NO_COLOR", "1")
-        .env_remove("RUST_LOG")
-        .output()
-        .expect("run jbearing")
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
-}
+mod common;
+use common::{count_color, jbearing, png_pixels, root, text};
 
 fn read(f: &h5::File, path: &str) -> Vec<f64> {
     f.dataset(path)
@@ -59,29 +41,6 @@ fn assert_same(what: &str, a: &[f64], b: &[f64]) {
             "{what}[{i}]: file {x}, direct {y}"
         );
     }
-}
-
-/// The RGB pixels of a PNG, row by row.
-fn png_pixels(path: &Path) -> (u32, u32, Vec<[u8; 3]>) {
-    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
-    let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    let step = info.color_type.samples();
-    let pixels = buf[..info.buffer_size()]
-        .chunks(step)
-        .map(|c| [c[0], c[1], c[2]])
-        .collect();
-    (info.width, info.height, pixels)
-}
-
-/// Pixels of exactly `rgb` in the rows `rows`.
-fn count_color(path: &Path, rgb: [u8; 3], rows: std::ops::Range<u32>) -> usize {
-    let (w, _, px) = png_pixels(path);
-    px.iter()
-        .enumerate()
-        .filter(|(k, p)| rows.contains(&((*k as u32) / w)) && **p == rgb)
-        .count()
 }
 
 fn direct() -> (MechanismSolution, MechanismSolution) {

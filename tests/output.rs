@@ -7,6 +7,8 @@ mod common;
 
 use std::path::Path;
 
+use common::{count_color, png_pixels};
+
 use jbearing::output::{
     CaseReport, CsvSummaryWriter, Hdf5Writer, Method, ORBIT_LEGEND_WIDTH, OutputError,
     OutputWriter, ParameterValue, PlotWriter, Reduction, SummaryRow, names, standard_writers,
@@ -346,29 +348,6 @@ fn large_case_text_is_kept_whole() {
     let back: hdf5_metno::types::VarLenUnicode =
         f.attr("case_text").unwrap().read_scalar().unwrap();
     assert_eq!(back.as_str(), r.case_text);
-}
-
-/// The RGB pixels of a PNG, row by row.
-fn png_pixels(path: &Path) -> (u32, u32, Vec<[u8; 3]>) {
-    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
-    let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    let step = info.color_type.samples();
-    let pixels = buf[..info.buffer_size()]
-        .chunks(step)
-        .map(|c| [c[0], c[1], c[2]])
-        .collect();
-    (info.width, info.height, pixels)
-}
-
-/// Pixels of exactly `rgb` in the rows `rows` of an image.
-fn count_color(path: &Path, rgb: [u8; 3], rows: std::ops::Range<u32>) -> usize {
-    let (w, _, px) = png_pixels(path);
-    px.iter()
-        .enumerate()
-        .filter(|(k, p)| rows.contains(&((*k as u32) / w)) && **p == rgb)
-        .count()
 }
 
 /// What the viewer must know is in the picture: a result that is not periodic puts a red

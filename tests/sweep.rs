@@ -4,23 +4,10 @@
 //! exists) unless forced; a missing shard is listed, never dropped.
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
 mod common;
-use common::sweep_case;
-
-fn jbearing(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_jbearing"))
-        .args(args)
-        .env("NO_COLOR", "1")
-        .env_remove("RUST_LOG")
-        .output()
-        .expect("run jbearing")
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
-}
+use common::{jbearing, sweep_case, text};
 
 /// Every dataset of an HDF5 file (recursively): name → raw bytes of its values.
 fn contents(path: &Path) -> Vec<(String, Vec<u8>)> {

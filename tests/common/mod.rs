@@ -341,3 +341,47 @@ combine = "factorial"
     .unwrap();
     p
 }
+
+/// The package root (case files are named relative to it).
+pub fn root() -> std::path::PathBuf {
+    std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `jbearing ARGS…` run from the package root, without colour or a RUST_LOG of the caller's.
+pub fn jbearing(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_jbearing"))
+        .args(args)
+        .current_dir(root())
+        .env("NO_COLOR", "1")
+        .env_remove("RUST_LOG")
+        .output()
+        .expect("run jbearing")
+}
+
+/// A process's output as text.
+pub fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+/// The RGB pixels of a PNG, row by row.
+pub fn png_pixels(path: &std::path::Path) -> (u32, u32, Vec<[u8; 3]>) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let step = info.color_type.samples();
+    let pixels = buf[..info.buffer_size()]
+        .chunks(step)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    (info.width, info.height, pixels)
+}
+
+/// Pixels of exactly `rgb` in the rows `rows` of an image.
+pub fn count_color(path: &std::path::Path, rgb: [u8; 3], rows: std::ops::Range<u32>) -> usize {
+    let (w, _, px) = png_pixels(path);
+    px.iter()
+        .enumerate()
+        .filter(|(k, p)| rows.contains(&((*k as u32) / w)) && **p == rgb)
+        .count()
+}
