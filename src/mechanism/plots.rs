@@ -19,7 +19,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::MechanismResults;
-use crate::output::plots::{FAMILY, circle_points, ensure_font, format_tick, format_unit_tick};
+use crate::output::plots::{
+    FAMILY, QUARTER, circle_points, crank_angle_chart, ensure_font, format_tick, format_unit_tick,
+};
 use crate::output::{OutputError, write_atomically};
 
 /// The safe minimum film thickness drawn on the film figure, after \[Flores2009\] §8: at least
@@ -221,25 +223,7 @@ fn panel(
         },
         y1 + pad,
     );
-    const QUARTER: f64 = 90.0;
-    let mut chart = ChartBuilder::on(&area)
-        .x_label_area_size(48)
-        .y_label_area_size(86)
-        .build_cartesian_2d(x0 / QUARTER..x1 / QUARTER, y0..y1)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .x_labels(((x1 - x0) / QUARTER).round() as usize + 1)
-        .y_labels(7)
-        .x_desc("crank angle [deg]")
-        .y_desc(ylabel)
-        .label_style((FAMILY, 17).into_font())
-        .axis_desc_style((FAMILY, 19).into_font())
-        .x_label_formatter(&|v| format!("{:.0}", v * QUARTER))
-        .y_label_formatter(&|v| format_tick(*v))
-        .light_line_style(RGBColor(245, 245, 245))
-        .draw()
-        .map_err(err)?;
+    let mut chart = crank_angle_chart(&area, (x0, x1), (y0, y1), ylabel)?;
     for (a, b) in shade {
         chart
             .draw_series(std::iter::once(Rectangle::new(

@@ -591,6 +591,49 @@ fn legend_strip(
     Ok(())
 }
 
+/// The x axis of crank-angle charts runs in quarter turns (crank angle / 90°) so that plotters'
+/// "nice" tick values (integers) fall on 0°, 90°, …, including the cycle's end; labels show
+/// degrees. Plot at x = crank angle / `QUARTER`.
+pub(crate) const QUARTER: f64 = 90.0;
+
+/// A chart over crank angles `x` (degrees) and values `y` on `area`, its mesh drawn in the
+/// project's style (cycle panels of the bearing cases, the mechanism's panels).
+pub(crate) fn crank_angle_chart<'a, 'b>(
+    area: &'a DrawingArea<BitMapBackend<'b>, Shift>,
+    x: (f64, f64),
+    y: (f64, f64),
+    ylabel: &str,
+) -> Result<
+    ChartContext<
+        'a,
+        BitMapBackend<'b>,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    String,
+> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
+    let ((x0, x1), (y0, y1)) = (x, y);
+    let mut chart = ChartBuilder::on(area)
+        .x_label_area_size(48)
+        .y_label_area_size(86)
+        .build_cartesian_2d(x0 / QUARTER..x1 / QUARTER, y0..y1)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_labels(((x1 - x0) / QUARTER).round() as usize + 1)
+        .y_labels(7)
+        .x_desc("crank angle [deg]")
+        .y_desc(ylabel)
+        .label_style((FAMILY, 17).into_font())
+        .axis_desc_style((FAMILY, 19).into_font())
+        .x_label_formatter(&|v| format!("{:.0}", v * QUARTER))
+        .y_label_formatter(&|v| format_tick(*v))
+        .light_line_style(RGBColor(245, 245, 245))
+        .draw()
+        .map_err(e)?;
+    Ok(chart)
+}
+
 fn draw_panel(
     area: &DrawingArea<BitMapBackend<'_>, Shift>,
     title: &str,
@@ -638,27 +681,7 @@ fn draw_panel(
     } else {
         (x0 - 45.0, x0 + 45.0)
     };
-    // The x axis runs in quarter turns (crank angle / 90°) so that plotters' "nice" tick values
-    // (integers) fall on 0°, 90°, …, including the cycle's end; labels show degrees.
-    const QUARTER: f64 = 90.0;
-    let mut chart = ChartBuilder::on(&area)
-        .x_label_area_size(48)
-        .y_label_area_size(86)
-        .build_cartesian_2d(x0 / QUARTER..x1 / QUARTER, y0..y1)
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .x_labels(((x1 - x0) / QUARTER).round() as usize + 1)
-        .y_labels(7)
-        .x_desc("crank angle [deg]")
-        .y_desc(ylabel)
-        .label_style((FAMILY, 17).into_font())
-        .axis_desc_style((FAMILY, 19).into_font())
-        .x_label_formatter(&|v| format!("{:.0}", v * QUARTER))
-        .y_label_formatter(&|v| format_tick(*v))
-        .light_line_style(RGBColor(245, 245, 245))
-        .draw()
-        .map_err(e)?;
+    let mut chart = crank_angle_chart(&area, (x0, x1), (y0, y1), ylabel)?;
     // The feed window behind the data, then TDC (crank 0° and every full turn) dotted.
     for (a, b) in &ctx.feed_windows {
         chart
