@@ -16,6 +16,9 @@
 //!   Sawicki's modified Thomas for periodic (circumferential) lines.
 //! - [`load`]: load histories shared by the mobility method and the inverse solver: periodic
 //!   load tables, synthetic loads, and the [`load::LoadHistory`] trait (W(t), ω_j, ω_b, p_feed).
+//! - [`elastic`]: plane-strain finite elements of the shaft and the housing (bilinear
+//!   quadrilaterals, faer sparse Cholesky), their film-gap compliance, and the deformable
+//!   bearing under a steady load (film and structure coupled, \[Benasciutti2012\]).
 //! - [`inverse`]: the inverse dynamic-load problem (load history → journal orbit): Newton on the
 //!   eccentricity per time step, run-in, cycles to a periodic solution, per-step time series.
 //! - [`mechanism`]: the planar slider-crank of \[Flores2009\] with a lubricated
@@ -35,6 +38,7 @@
 //!   the steady load → eccentricity Newton solve.
 
 pub mod closed_form;
+pub mod elastic;
 pub mod heat_balance;
 pub mod inverse;
 pub mod load;

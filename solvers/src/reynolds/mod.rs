@@ -441,6 +441,9 @@ pub enum ReynoldsError {
         theta_index: usize,
         z_index: usize,
     },
+    /// A deformed film (a [`FilmDeformation`] added to the rigid gap) is not open everywhere.
+    #[error("film closed: thickness {thickness:e} m at θ = {theta} rad (deformed film)")]
+    FilmClosed { thickness: f64, theta: f64 },
     #[error(
         "steady load solve not converged after {iterations} Newton iterations: force residual \
          {force_residual:e} N at ε = ({eps_x}, {eps_y})",
@@ -495,6 +498,53 @@ pub struct ReynoldsSolver {
     last: Option<Linearization>,
     /// ∂ψ/∂ε_x and ∂ψ/∂ε_y of the last Jacobian (the start of the next one's solves).
     sensitivity: [Vec<f64>; 2],
+    /// Gap change of elastic surfaces added to the rigid film (steady solves only).
+    deformation: Option<FilmDeformation>,
+}
+
+/// A gap change g(θ) added to the rigid film thickness, h = c − e cos(θ − ψ) + g(θ) (the
+/// same at every z: a plane deformation model, \[Benasciutti2012\] Fig. 5 and its text). Given by its values
+/// at n equally spaced angles θ_k = 2πk/n of the bearing frame (θ from +x towards +y),
+/// interpolated linearly and periodically in between. Positive g opens the gap.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilmDeformation {
+    values: Vec<f64>,
+}
+
+impl FilmDeformation {
+    /// g at θ_k = 2πk/n, m; at least 3 finite values.
+    pub fn new(values: Vec<f64>) -> Result<Self, ReynoldsError> {
+        if values.len() < 3 {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "deformation",
+                value: values.len() as f64,
+                reason: "needs at least 3 samples around",
+            });
+        }
+        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "deformation",
+                value: *v,
+                reason: "must be finite",
+            });
+        }
+        Ok(Self { values })
+    }
+
+    /// The samples g(θ_k).
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// g(θ), linear between the samples, periodic.
+    pub fn at(&self, theta: f64) -> f64 {
+        let n = self.values.len();
+        let s =
+            theta.rem_euclid(2.0 * std::f64::consts::PI) / (2.0 * std::f64::consts::PI) * n as f64;
+        let i = (s.floor() as usize).min(n - 1);
+        let t = s - i as f64;
+        (1.0 - t) * self.values[i] + t * self.values[(i + 1) % n]
+    }
 }
 
 /// What the film-force Jacobian needs of the last converged solve.
@@ -572,7 +622,21 @@ impl ReynoldsSolver {
             dirichlet: vec![0.0; n],
             last: None,
             sensitivity: [Vec::new(), Vec::new()],
+            deformation: None,
         })
+    }
+
+    /// Adds a gap change to the film of the following steady solves (None: the rigid film).
+    /// With a deformation the eccentricity ratio may exceed 1 as long as the film stays open
+    /// (a deformed bore can let the journal centre move beyond the nominal clearance,
+    /// \[Benasciutti2012\] Fig. 6b); time steps refuse it.
+    pub fn set_deformation(&mut self, deformation: Option<FilmDeformation>) {
+        self.deformation = deformation;
+    }
+
+    /// The gap change set by [`Self::set_deformation`].
+    pub fn deformation(&self) -> Option<&FilmDeformation> {
+        self.deformation.as_ref()
     }
 
     pub fn params(&self) -> &ReynoldsParams {
@@ -647,9 +711,19 @@ impl ReynoldsSolver {
                 reason: "state fields do not match the grid size",
             });
         }
+        if self.deformation.is_some() {
+            return Err(ReynoldsError::Unsupported {
+                what: "a film deformation is supported in steady solves only",
+            });
+        }
         check_eps(state.eccentricity_ratio)?;
         self.set_grid(0.0)?;
-        let old_h = FilmThickness::new(&self.grid, self.params.clearance, state.eccentricity_ratio);
+        let old_h = FilmThickness::new(
+            &self.grid,
+            self.params.clearance,
+            state.eccentricity_ratio,
+            None,
+        );
         let old_content: Vec<f64> = old_h
             .node
             .iter()
@@ -890,13 +964,44 @@ impl ReynoldsSolver {
         conditions: &OperatingConditions,
     ) -> Result<FilmSolution, ReynoldsError> {
         let core = self.steady_core(eccentricity_ratio, conditions)?;
-        Ok(outputs::film_solution(
+        let mut sol = outputs::film_solution(
             &self.params,
             conditions,
             eccentricity_ratio,
             &core,
             &self.viscosity_field,
-        ))
+        );
+        if self.deformation.is_some() {
+            // The deformed film's thinnest node (the rigid c(1 − |ε|) is no longer it).
+            let (k, h) = core
+                .h
+                .iter()
+                .enumerate()
+                .fold(
+                    (0, f64::INFINITY),
+                    |m, (k, &h)| if h < m.1 { (k, h) } else { m },
+                );
+            let nz = core.grid.n_z;
+            sol.min_film_thickness = h;
+            sol.min_film_location = [
+                core.grid
+                    .theta(k / nz)
+                    .rem_euclid(2.0 * std::f64::consts::PI),
+                core.grid.z(k % nz),
+            ];
+        }
+        Ok(sol)
+    }
+
+    /// [`Self::solve_steady_load`] started from `start` (ε) instead of the default start
+    /// (a previous answer of a nearby problem, e.g. the last deformation's).
+    pub fn solve_steady_load_from(
+        &mut self,
+        load: [f64; 2],
+        conditions: &OperatingConditions,
+        start: [f64; 2],
+    ) -> Result<(FilmSolution, SteadyLoadInfo), ReynoldsError> {
+        steady_load::solve_from(self, load, conditions, Some(start))
     }
 
     /// The steady eccentricity that carries the constant load `load` (the force the machine
@@ -1031,7 +1136,15 @@ impl ReynoldsSolver {
         conditions: &OperatingConditions,
         warm: Option<(Vec<f64>, Vec<f64>)>,
     ) -> Result<Prepared, ReynoldsError> {
-        check_eps(eps)?;
+        match &self.deformation {
+            None => check_eps(eps)?,
+            Some(_) if !(eps[0].is_finite() && eps[1].is_finite()) => {
+                return Err(ReynoldsError::EccentricityOutOfRange {
+                    magnitude: eps[0].hypot(eps[1]),
+                });
+            }
+            Some(_) => {}
+        }
         let p = &self.params;
         if conditions.feed_pressures.len() != p.grooves.len() {
             return Err(ReynoldsError::FeedPressureCount {
@@ -1062,7 +1175,10 @@ impl ReynoldsSolver {
         let p = &self.params;
         let grid = &self.grid;
         let n = grid.len();
-        let h = FilmThickness::new(grid, p.clearance, eps);
+        let h = FilmThickness::new(grid, p.clearance, eps, self.deformation.as_ref());
+        if self.deformation.is_some() {
+            h.check_positive(grid)?;
+        }
         let beta = p.bulk_modulus;
         let nz = grid.n_z;
         if let Some(model) = &p.viscosity_model {

@@ -32,6 +32,19 @@ pub(crate) fn solve(
     load: [f64; 2],
     conditions: &OperatingConditions,
 ) -> Result<(FilmSolution, SteadyLoadInfo), ReynoldsError> {
+    solve_from(solver, load, conditions, None)
+}
+
+/// The Newton solve from `start` (None: the default start of the module docs). With a film
+/// deformation set the |ε| ≤ 0.995 limit is lifted (the deformed film may carry the journal
+/// beyond the clearance circle); a trial step that closes the film fails its solve and is
+/// halved like any other.
+pub(crate) fn solve_from(
+    solver: &mut ReynoldsSolver,
+    load: [f64; 2],
+    conditions: &OperatingConditions,
+    start: Option<[f64; 2]>,
+) -> Result<(FilmSolution, SteadyLoadInfo), ReynoldsError> {
     let wmag = load[0].hypot(load[1]);
     if !(wmag > 0.0 && wmag.is_finite()) {
         return Err(ReynoldsError::InvalidParameter {
@@ -42,7 +55,8 @@ pub(crate) fn solve(
     }
     let speed = conditions.journal_speed - conditions.bearing_speed;
     let dir = load[1].atan2(load[0]) + speed.signum() * std::f64::consts::FRAC_PI_4;
-    let mut eps = [0.5 * dir.cos(), 0.5 * dir.sin()];
+    let mut eps = start.unwrap_or([0.5 * dir.cos(), 0.5 * dir.sin()]);
+    let rigid = solver.deformation().is_none();
     let mut solves = 0;
     let mut eval = |solver: &mut ReynoldsSolver, e: [f64; 2]| {
         solves += 1;
@@ -96,7 +110,7 @@ pub(crate) fn solve(
         for _ in 0..9 {
             let mut trial = [eps[0] + lambda * de[0], eps[1] + lambda * de[1]];
             let m = trial[0].hypot(trial[1]);
-            if m > 0.995 {
+            if rigid && m > 0.995 {
                 trial = [trial[0] * 0.995 / m, trial[1] * 0.995 / m];
             }
             match eval(solver, trial) {

@@ -340,7 +340,7 @@ fn semismooth_newton_matches_lemke_lcp_oracle() {
 
         // The oracle: the same step as an LCP.
         let prep = s.prepare(eps1, &c, None).unwrap();
-        let old_h = FilmThickness::new(&s.grid, p.clearance, eps0);
+        let old_h = FilmThickness::new(&s.grid, p.clearance, eps0, None);
         let old_content: Vec<f64> = old_h
             .node
             .iter()
