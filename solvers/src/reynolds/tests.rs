@@ -838,3 +838,66 @@ fn recirculated_flow_is_the_couette_flow_arriving_at_the_groove() {
         sol.recirculated_flow
     );
 }
+
+/// A uniform gap change δ is a larger clearance: h = c − e·n(θ) + δ = (c + δ)(1 − ε'·n(θ)) with
+/// ε' = ε c/(c + δ). So the film with the deformation at ε must be the rigid film of clearance
+/// c + δ at ε' on the same grid — here at |ε| = 1.08, which only a deformation allows. Both
+/// are solved by the sparse-LU oracle to the 1e-10 mass residual with the same switch
+/// pattern: pressures agree to 1e-7 of p_max (the oracle test's tolerance), forces likewise.
+/// A deformation that closes the film is refused with the place where it closes, and time
+/// steps refuse a deformation.
+#[test]
+fn uniform_deformation_is_a_larger_clearance() {
+    let c = 50e-6;
+    let delta = 0.5 * c;
+    let eps = [0.9, -0.6];
+    let mut s = ReynoldsSolver::new(grooved(LinearSolver::SparseLu)).unwrap();
+    assert!(matches!(
+        s.solve_steady(eps, &conditions(2e5)),
+        Err(ReynoldsError::EccentricityOutOfRange { .. })
+    ));
+    s.set_deformation(Some(FilmDeformation::new(vec![delta; 36]).unwrap()));
+    let deformed = s.solve_steady(eps, &conditions(2e5)).unwrap();
+    let mut p = grooved(LinearSolver::SparseLu);
+    p.clearance = c + delta;
+    let k = c / (c + delta);
+    let rigid = ReynoldsSolver::new(p)
+        .unwrap()
+        .solve_steady([eps[0] * k, eps[1] * k], &conditions(2e5))
+        .unwrap();
+    let p_max = rigid.max_pressure;
+    assert!(p_max > 1e6);
+    let worst = deformed
+        .pressure
+        .iter()
+        .zip(rigid.pressure.iter())
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-7 * p_max, "{worst} vs p_max {p_max}");
+    for i in 0..2 {
+        assert!((deformed.film_force[i] - rigid.film_force[i]).abs() < 1e-7 * rigid.load_capacity);
+    }
+    // The deformed film's h_min is its thinnest node, the rigid one the exact minimum
+    // (c + δ)(1 − |ε'|): within the node spacing's (Δθ²/2) (c + δ)|ε'| of it, never below.
+    let d_theta = 2.0 * std::f64::consts::PI / 72.0;
+    let exact = rigid.min_film_thickness;
+    assert!(deformed.min_film_thickness >= exact * (1.0 - 1e-12));
+    assert!(deformed.min_film_thickness - exact <= 0.5 * d_theta * d_theta * (c + delta));
+    // Closing the film: δ = −0.2 c at |ε| = 0.9 leaves h_min = −0.1 c.
+    s.set_deformation(Some(FilmDeformation::new(vec![-0.2 * c; 36]).unwrap()));
+    match s.solve_steady([0.9, 0.0], &conditions(2e5)) {
+        Err(ReynoldsError::FilmClosed { thickness, .. }) => assert!(thickness < 0.0),
+        other => panic!("expected FilmClosed, got {other:?}"),
+    }
+    let state = s.initial_state([0.1, 0.0]);
+    let step = StepInput {
+        eccentricity_ratio: [0.1, 0.0],
+        dt: 1e-4,
+        conditions: conditions(2e5),
+    };
+    assert!(matches!(
+        s.solve_step(&state, &step),
+        Err(ReynoldsError::Unsupported { .. })
+    ));
+    assert!(FilmDeformation::new(vec![0.0, f64::NAN, 0.0]).is_err());
+}
