@@ -313,3 +313,72 @@ fn gap_compliance_of_uniform_pressure() {
         assert!((v / exact - 1.0).abs() < 2e-3, "{v} vs {exact}");
     }
 }
+
+/// The coupled steady-load solve between its limits, on a small plane-model bearing (JB1's
+/// geometry and load per length, μ = 0.1678 Pa·s, 120 × 5 film, 64 nodes around): a
+/// structure 10⁴ times stiffer than steel gives the rigid answer — its gap change is ~1e-4 of
+/// steel's, ~1e-3 of the thinnest film, so e within 2e-3 and p_max within 1 % — and softer
+/// structures (steel, half-steel) give monotonically larger e and lower p_max. Every answer
+/// balances the load and satisfies g = C p̄ to its tolerance.
+#[test]
+fn coupled_solve_between_rigid_and_soft() {
+    use crate::reynolds::{GridParams, OperatingConditions, ReynoldsParams, SupplyModel};
+    let (r, c) = (0.25, 0.25e-3);
+    let l = 100.0 * 2.0 * r;
+    let mut p = ReynoldsParams::plain(r, l, c, 0.1678);
+    p.supply = SupplyModel::AxialLineAtMaxGap;
+    p.grid = GridParams {
+        n_theta: 120,
+        n_z: 5,
+    };
+    p.bulk_modulus = 1.5e13;
+    let cond = OperatingConditions {
+        journal_speed: 65.0 * 2.0 * std::f64::consts::PI / 60.0,
+        bearing_speed: 0.0,
+        feed_pressures: vec![],
+    };
+    let load = [0.0, -3.6e6 / 0.3 * l];
+    let mut solver = crate::reynolds::ReynoldsSolver::new(p).unwrap();
+    let (rigid, info) = solver.solve_steady_load(load, &cond).unwrap();
+    let e_rigid = c * info.eccentricity_ratio[0].hypot(info.eccentricity_ratio[1]);
+    let mut last = (e_rigid, rigid.max_pressure);
+    for (k, scale) in [1e4, 1.0, 0.5].into_iter().enumerate() {
+        let m = Material {
+            youngs_modulus: 210e9 * scale,
+            poisson_ratio: 0.3,
+        };
+        let params = ElasticParams {
+            shaft_material: m,
+            housing_material: m,
+            n_theta: 64,
+            ..ElasticParams::steel(r)
+        };
+        let bearing = ElasticBearing::new(r, params).unwrap();
+        let (sol, info) = solve_steady_load(&mut solver, &bearing, load, &cond).unwrap();
+        let eps = info.steady.eccentricity_ratio;
+        let e = c * eps[0].hypot(eps[1]);
+        let f = sol.film.film_force;
+        assert!((f[0] + load[0]).hypot(f[1] + load[1]) <= 1e-8 * load[1].abs());
+        let resid = bearing
+            .compliance
+            .gap(&sol.surface_pressure)
+            .iter()
+            .zip(&sol.gap_change)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(resid <= 1e-5 * c, "g residual {resid}");
+        if k == 0 {
+            assert!(
+                (e / e_rigid - 1.0).abs() < 2e-3,
+                "stiff e {e} vs rigid {e_rigid}"
+            );
+            assert!((sol.film.max_pressure / rigid.max_pressure - 1.0).abs() < 0.01);
+        } else {
+            assert!(
+                e > last.0 && sol.film.max_pressure < last.1,
+                "not monotone at {scale}"
+            );
+        }
+        last = (e, sol.film.max_pressure);
+    }
+}
