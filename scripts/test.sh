@@ -8,3 +8,5 @@ bash scripts/deps.sh
 cargo test --workspace --all-targets --no-fail-fast
 # Doc tests are not part of --all-targets.
 cargo test --workspace --doc
+# The Python package (python/): built into a virtualenv, its pytest suite against the CLI.
+bash scripts/test_python.sh

@@ -1353,11 +1353,7 @@ pub fn run_case(
     observer: &dyn RunObserver,
 ) -> Result<CaseOutcome, RunError> {
     let case = case.clone();
-    let mut warnings = case.warnings.clone();
-    warnings.extend(budget::check(&case, limits)?);
-    for w in &warnings {
-        observer.warning(&case.name, w);
-    }
+    let warnings = checked_warnings(&case, limits, observer)?;
     // The output directory is made and tried for writing before the solve, not found
     // unusable after it.
     let unusable = |source| RunError::OutputDir {
@@ -1369,14 +1365,7 @@ pub fn run_case(
     for stale in crate::output::remove_stale_temporaries(out_dir) {
         tracing::warn!("removed {}, left by a run that was killed", stale.display());
     }
-    let mut report = solve_case(&case, observer)?;
-    report.warnings = warnings
-        .iter()
-        .map(|w| ReportWarning {
-            kind: w.kind.as_str().into(),
-            message: w.to_string(),
-        })
-        .collect();
+    let report = solve_case_warned(&case, &warnings, observer)?;
     let mut files = Vec::new();
     for w in standard_writers() {
         if !case.output.plots && w.name() == "plots" {
@@ -1385,6 +1374,49 @@ pub fn run_case(
         files.extend(w.write(&report, out_dir)?);
     }
     Ok(CaseOutcome { report, files })
+}
+
+/// What [`run_case`] computes, without writing anything: the case refused above `limits`, its
+/// warnings to the observer and into the report, then [`solve_case`]. The Python package's
+/// `run_case` goes through here, so its datasets hold the numbers of the CLI's files.
+pub fn solve_case_checked(
+    case: &Case,
+    limits: &Limits,
+    observer: &dyn RunObserver,
+) -> Result<CaseReport, RunError> {
+    let warnings = checked_warnings(case, limits, observer)?;
+    solve_case_warned(case, &warnings, observer)
+}
+
+/// The case's warnings and its budget's (refused above `limits`), told to the observer.
+fn checked_warnings(
+    case: &Case,
+    limits: &Limits,
+    observer: &dyn RunObserver,
+) -> Result<Vec<CaseWarning>, RunError> {
+    let mut warnings = case.warnings.clone();
+    warnings.extend(budget::check(case, limits)?);
+    for w in &warnings {
+        observer.warning(&case.name, w);
+    }
+    Ok(warnings)
+}
+
+/// [`solve_case`] with `warnings` kept in the report.
+fn solve_case_warned(
+    case: &Case,
+    warnings: &[CaseWarning],
+    observer: &dyn RunObserver,
+) -> Result<CaseReport, RunError> {
+    let mut report = solve_case(case, observer)?;
+    report.warnings = warnings
+        .iter()
+        .map(|w| ReportWarning {
+            kind: w.kind.as_str().into(),
+            message: w.to_string(),
+        })
+        .collect();
+    Ok(report)
 }
 
 /// Current time as ISO 8601 UTC, to the second.
