@@ -218,21 +218,21 @@ def _progress(progress: Any) -> Callable[[dict], None] | None:
         bar: dict[str, Any] = {}
 
         def show(ev: dict) -> None:
+            # One bar per method over all its time steps; the cycle and the step's residual
+            # beside it (the number of cycles is not known in advance).
             e = ev["event"]
-            if e == "step":
-                key = (ev["method"], ev["cycle"])
-                if bar.get("key") != key:
-                    if "bar" in bar:
-                        bar["bar"].close()
-                    bar["bar"] = tqdm(total=ev["steps"], desc=f"{ev['method']} cycle {ev['cycle']}")
-                    bar["key"] = key
-                    bar["n"] = 0
-                bar["bar"].update(ev["step"] - bar["n"])
-                bar["n"] = ev["step"]
-                bar["bar"].set_postfix(residual=f"{ev['residual']:.2e}")
+            if e == "method_started":
+                bar["bar"] = tqdm(desc=ev["method"], unit="step")
+                bar["last"] = (None, 0)
+            elif e == "step" and "bar" in bar:
+                cycle, done = bar["last"]
+                bar["bar"].update(ev["step"] - done if cycle == ev["cycle"] else ev["step"])
+                bar["last"] = (ev["cycle"], ev["step"])
+                bar["bar"].set_postfix(cycle=ev["cycle"], residual=f"{ev['residual']:.1e}")
+            elif e == "cycle" and "bar" in bar:
+                bar["bar"].set_postfix(cycle=ev["cycle"], change=f"{ev['residual']:.1e}")
             elif e == "method_done" and "bar" in bar:
                 bar.pop("bar").close()
-                bar.pop("key", None)
             elif e == "warning":
                 print(f"warning: {ev['message']}")
 

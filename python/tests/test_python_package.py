@@ -182,7 +182,7 @@ def test_steady_film_tends_to_the_short_bearing_closed_form():
     assert float(st.min_film_thickness) == pytest.approx(C * (1 - eps_fd), rel=1e-9)
 
 
-def test_inverse_cycle_under_a_constant_load_settles_at_the_steady_solution():
+def test_inverse_cycle_under_a_constant_load_settles_at_the_steady_solution(capsys):
     """The inverse (time-stepping) solver under a constant load ends at rest where the steady
     Newton solve puts the journal: the same film, two independent ways to its equilibrium.
     The journal starts at the bearing centre. Tolerance 1e-3 in eps: the run stops when a
@@ -201,8 +201,11 @@ def test_inverse_cycle_under_a_constant_load_settles_at_the_steady_solution():
         crank_angle=[0.0], load_x=[load[0]], load_y=[load[1]], crank_speed=omega,
         grooves=[groove], feed_pressure=2e5, grid=(48, 8), steps_per_cycle=36, max_cycles=20,
         options={"output": {"samples_per_cycle": 36, "field_snapshots": 4}},
-        name="kw_inverse", **bearing,
+        name="kw_inverse", progress=True, **bearing,
     )
+    # progress=True: a tqdm bar for the method, with the cycle and the step residual.
+    bar = capsys.readouterr().err
+    assert "rigorous" in bar and "cycle=" in bar and "residual=" in bar, bar
     rig = tree["rigorous"]
     assert rig.attrs["periodic"] == 1
     ex = rig["eccentricity_x"].values / 4e-5
