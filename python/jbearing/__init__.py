@@ -18,7 +18,8 @@ builds xarray objects with the names, units and dimensions of the CLI's ``CASE.h
 Units: SI everywhere (m, Pa s, N, rad/s, Pa); crank angles in degrees, as in the files.
 Solves release the GIL; ``progress`` is a callable receiving one dict per event, or ``True``
 for a tqdm bar. Errors are :class:`JbearingError` subclasses whose attributes carry the Rust
-error variant's fields (``kind`` is the variant; e.g. ``SolverError.eccentricity``).
+error variant's fields and those of its sources (``kind`` is the variant, ``details`` the whole
+parsed error; e.g. ``CaseError.line``, ``SolverError.force_residual``).
 """
 
 from __future__ import annotations
@@ -65,7 +66,8 @@ OutputError = _jbearing.OutputError
 
 def _parse_debug(text: str) -> Any:
     """Parse Rust's ``{:?}`` of an error (structs, tuples, lists, strings, numbers) into
-    dicts / lists / Python scalars. Struct variants become ``{"kind": name, field: value}``."""
+    dicts / lists / Python scalars. Struct variants become ``{"variant": name, field: value}``,
+    a one-field tuple variant wrapping one ``{"variant": name, "source": inner}``."""
     pos = 0
 
     def ws() -> None:
@@ -89,7 +91,7 @@ def _parse_debug(text: str) -> Any:
             pos += 1
             items = seq(close)
             return items if c == "[" else tuple(items)
-        m = re.compile(r"[-+]?(?:\d[\d_]*\.?\d*(?:[eE][-+]?\d+)?|inf|NaN)").match(text, pos)
+        m = re.compile(r"[-+]?(?:\d[\d_]*\.?\d*(?:[eE][-+]?\d+)?|inf|NaN)(?![A-Za-z0-9_])").match(text, pos)
         if m and m.group(0):
             pos = m.end()
             s = m.group(0)
@@ -108,7 +110,7 @@ def _parse_debug(text: str) -> Any:
             return None
         if pos < len(text) and text[pos] == "{":
             pos += 1
-            out: dict[str, Any] = {"kind": name}
+            out: dict[str, Any] = {"variant": name}
             while True:
                 ws()
                 if text[pos] == "}":
@@ -131,8 +133,8 @@ def _parse_debug(text: str) -> Any:
                 return items[0]
             if len(items) == 1 and isinstance(items[0], dict):
                 inner = dict(items[0])
-                return {"kind": name, "source": inner}
-            return {"kind": name, "values": items}
+                return {"variant": name, "source": inner}
+            return {"variant": name, "values": items}
         return name
 
     def seq(close: str) -> list:
@@ -164,11 +166,15 @@ def _rust_str_to_json(s: str) -> str:
 
 
 def _flatten(d: dict, out: dict) -> None:
+    """The fields of a parsed error and of its sources, outer ones first (``x_variant`` names the
+    variant of a nested error in field ``x``)."""
     for k, v in d.items():
-        if isinstance(v, dict) and "kind" in v:
-            out.setdefault(f"{k}_kind", v["kind"])
+        if k == "variant":
+            continue
+        if isinstance(v, dict) and "variant" in v:
+            out.setdefault(f"{k}_variant", v["variant"])
             _flatten(v, out)
-        elif k != "kind":
+        else:
             out.setdefault(k, v)
 
 
@@ -186,7 +192,7 @@ def _enrich(err: BaseException) -> BaseException:
         fields: dict[str, Any] = {}
         _flatten(parsed, fields)
         for k, v in fields.items():
-            if not hasattr(err, k) or k in ("kind",):
+            if not hasattr(err, k):
                 try:
                     setattr(err, k, v)
                 except AttributeError:

@@ -228,6 +228,12 @@ def test_errors_carry_the_numbers():
     assert err.kind == "Key" and err.key == "bearing.radial_clearance_m"
     assert isinstance(err.line, int) and err.line > 1
     assert "radial_clearance_m" in str(err)
+    # A missing case file: the Read variant, its file, and the OS error below it (errno 2).
+    with pytest.raises(jb.CaseError) as e:
+        jb.run_case(CASES / "no_such_case.toml")
+    err = e.value
+    assert err.kind == "Read" and err.file == str(CASES / "no_such_case.toml")
+    assert err.source_variant == "Os" and err.code == 2, err.details
     # A load far above what the film can carry at the solver's largest eccentricity: the
     # steady Newton solve stops, and the error carries its iteration count, residual and place.
     load = 5e6
