@@ -21,7 +21,7 @@ if [ ! -x "$venv/bin/python" ] || [ "$(cat "$stamp" 2>/dev/null)" != "$wanted" ]
     "$venv/bin/pip" install --quiet --disable-pip-version-check -r "$requirements"
     printf '%s' "$wanted" > "$stamp"
 fi
-export VIRTUAL_ENV="$PWD/$venv"
+export VIRTUAL_ENV="$(cd "$venv" && pwd)"
 export PATH="$VIRTUAL_ENV/bin:$PATH"
 
 # The CLI binary the tests compare with, built with the same profile as the wheel.
