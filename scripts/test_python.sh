@@ -5,9 +5,10 @@
 # pytest with JBEARING_CLI = the jbearing binary of the same checkout (the tests compare the
 # package's results with the CLI's HDF5 files).
 #
-# The wheel is built with the `test` profile, whose artifacts `cargo test --workspace` has just
-# built: only pyo3 and the binding crate compile here. A user's `pip install ./python` builds
-# the release profile instead (see README "Python").
+# The wheel is built with the `dev` profile: the dependencies are the ones `cargo test` has just
+# built (the test profile shares them), so only our two crates (at opt-level 1), pyo3 and the
+# binding crate compile here. (`--profile test` would build the library as a test harness.) A
+# user's `pip install ./python` builds the release profile instead (see README "Python").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target=${CARGO_TARGET_DIR:-target}
@@ -24,7 +25,8 @@ fi
 export VIRTUAL_ENV="$(cd "$venv" && pwd)"
 export PATH="$VIRTUAL_ENV/bin:$PATH"
 
-# The CLI binary the tests compare with, built with the same profile as the wheel.
+# The CLI binary the tests compare with: the one `cargo test` built (test profile; the numbers do
+# not depend on the optimisation level, Rust does not reassociate floating-point operations).
 cli=$(cargo build --profile test --bin jbearing --message-format=json-render-diagnostics \
     | python -c 'import json, sys
 for line in sys.stdin:
@@ -33,6 +35,6 @@ for line in sys.stdin:
         print(m["executable"])')
 wheels="$target/tmp/python-wheels"
 rm -rf "$wheels"
-maturin build --quiet --profile test --auditwheel skip --compatibility linux --manifest-path python/Cargo.toml --out "$wheels"
+maturin build --quiet --profile dev --auditwheel skip --compatibility linux --manifest-path python/Cargo.toml --out "$wheels"
 pip install --quiet --disable-pip-version-check --force-reinstall --no-deps "$wheels"/jbearing-*.whl
 JBEARING_CLI="$cli" python -m pytest python/tests -q -p no:cacheprovider
