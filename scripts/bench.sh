@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the criterion benches. `--ci` runs a short profile (well under a minute of measuring)
-# that only checks the benches run; without it the full measurement that the README tables
-# come from.
+# that only checks the benches run; without it the full measurement that the tables of
+# docs/performance.md come from.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [[ "${1:-}" == "--ci" ]]; then

@@ -439,7 +439,7 @@ fn a_single_cycle_run_keeps_its_result() {
 }
 
 /// `jbearing closed-form` on the \[Flores2009\] simple bearing prints ε of each model; the values are
-/// the README's "\[Flores2009\] Table 1 simple bearing" table (published closed forms, \[Flores2009\]
+/// docs/validation.md's "\[Flores2009\] Table 1 simple bearing" table (published closed forms, \[Flores2009\]
 /// eqs. 6–13, checked against the paper's converged force F_Y = 31.275 N), to its 4 decimals.
 #[test]
 fn closed_form_prints_the_seed_004_equilibria() {

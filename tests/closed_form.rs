@@ -27,7 +27,7 @@ fn flores_case() -> Case {
     Case::from_file(&p).unwrap()
 }
 
-/// README "Closed-form models and Ritz", \[Flores2009\] Table 1 simple bearing table: ε per model from
+/// docs/validation.md "Closed-form models and Ritz", \[Flores2009\] Table 1 simple bearing table: ε per model from
 /// the published closed forms (\[Flores2009\] eqs. 6–13; \[Flores2006\] eqs. 36–37), printed to 4 decimals.
 const README_EPS: [(&str, f64); 5] = [
     ("long_sommerfeld", 0.0842),
@@ -65,7 +65,7 @@ fn closed_form_group_reads_back_with_model_dimension_and_units() {
             .iter()
             .position(|m| m == name)
             .unwrap_or_else(|| panic!("{name}"));
-        // The README prints 4 decimals: half a unit in the last place.
+        // docs/validation.md prints 4 decimals: half a unit in the last place.
         assert!(
             (eps[k] - want).abs() <= 0.5e-4,
             "{name}: ε {} vs {want}",
@@ -103,7 +103,7 @@ fn closed_form_group_reads_back_with_model_dimension_and_units() {
     }
     let att: Vec<f64> = g.dataset("attitude_angle").unwrap().read_raw().unwrap();
     let k = models.iter().position(|m| m == "long_sommerfeld").unwrap();
-    // The full-film long bearing sits at 90° to the load (Sommerfeld), README table 90.00°.
+    // The full-film long bearing sits at 90° to the load (Sommerfeld), docs/validation.md table 90.00°.
     assert!((att[k].to_degrees() - 90.0).abs() < 1e-6);
     let wy: f64 = g.attr("load_y").unwrap().read_scalar().unwrap();
     assert_eq!(wy, -31.275);

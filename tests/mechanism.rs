@@ -204,7 +204,7 @@ fn run_writes_the_slider_crank_files_with_the_solvers_numbers() {
     assert!((value("min_film_thickness_min", 3) - h_min).abs() < 1e-15);
     assert_eq!(value("contact_onsets", 3), 0.0);
     // [Flores2009] §8: at c 0.2 mm, 400 cP the lubricated joint behaves almost as the ideal one
-    // (README: peaks 2726 N against 2719 N); the journal stays off the wall.
+    // (docs/slider-crank.md: peaks 2726 N against 2719 N); the journal stays off the wall.
     let dev = value("joint_force_max", 5);
     assert!(dev > 0.0 && dev < 1.0, "peak force deviation {dev} %");
     assert!(h_min > 50e-6, "h_min {h_min}");
@@ -326,7 +326,7 @@ fn batch_runs_a_directory_of_both_kinds() {
     );
 }
 
-/// The shipped case with c 0.5 mm and 40 cP (README study table: dry contact, two onsets): the
+/// The shipped case with c 0.5 mm and 40 cP (docs/slider-crank.md study table: dry contact, two onsets): the
 /// contact events in the file are the direct run's, kind by kind, and the figures shade where
 /// the contact acts.
 #[test]

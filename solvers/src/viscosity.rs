@@ -13,7 +13,7 @@
 //! assumption, \[Benasciutti2012\] "T_m const."), or rising linearly from T_in at the supply to T_out
 //! over a span in the direction of the surface motion (\[Benasciutti2012\] "T_in − T_out lin."; the paper
 //! does not say over which angle — its rows are reproduced with the rise across the converging
-//! half of the film, span π from h_max, see the README's Table 2):
+//! half of the film, span π from h_max, see the Table 2 rows in docs/validation.md):
 //!
 //! ```text
 //!   θ_s = angle from the supply in the direction of motion, 0 … 2π
@@ -292,7 +292,7 @@ pub enum Temperature {
     /// From `inlet` (°C) at the supply rising linearly to `outlet` (°C) `span` rad downstream,
     /// then `outlet` until the supply again: the oil heats up across the active film only.
     /// \[Benasciutti2012\]'s "T_in − T_out linear" rows are reproduced with the supply at h_max and
-    /// span = π (the rise across the converging half, from h_max to h_min; README, Table 2).
+    /// span = π (the rise across the converging half, from h_max to h_min; docs/validation.md, Table 2).
     LinearOverSpan {
         /// T at the supply, °C.
         inlet: f64,

@@ -8,7 +8,7 @@
 //! the journal radius R_j (\[Flores2009\] eqs. 6–17). The paper gives the equilibrium positions only
 //! as plotted orbits (Fig. 9), so the test checks the force balance it states, the independent
 //! textbook attitude of the half-film models, the relations between the models, and prints the
-//! table quoted in the README.
+//! table quoted in docs/validation.md.
 
 use jbearing_solvers::closed_form::{
     ClosedFormModel, ClosedFormParams, EquilibriumSolution, JournalMotion, film_force,

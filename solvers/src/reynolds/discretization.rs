@@ -61,7 +61,7 @@
 //! Raimondi–Boyd table problems at ε = 0.99 (dimensionless: δ = 3 μ U Δx / (β c² (1 − ε)²), with
 //! the tables' So-scaled pressure 6 μ U R/c² ≈ a few MPa ≪ β) δ ≈ 1e-3 … 1e-2 at h_min only,
 //! ≤ 1e-5 over the rest of the film. Measured: every validation table moved by less than its
-//! tolerance (README, "Validation"). With h at the face the scheme stays second order in h; the
+//! tolerance (docs/validation.md, "Reynolds solver"). With h at the face the scheme stays second order in h; the
 //! node-averaged h of the first generation was first order and the dominant error at ε ≥ 0.95.
 //!
 //! **Every frozen-switch matrix is an M-matrix.** For a frozen g (any g ∈ {0, 1}ⁿ; the Newton

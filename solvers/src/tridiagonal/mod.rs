@@ -113,7 +113,7 @@
 //! last row (∝ Π u_k) decay geometrically along the line. Left alone they pass through the
 //! subnormal range (|v| < 2⁻¹⁰²² ≈ 2.2e-308) after a few hundred to a thousand rows, and x86
 //! cores take a slow path for subnormal operands and results: a 1024-unknown line measured
-//! 1.34 × plain Thomas instead of 1.06 × (README, "Performance: line kernels"). The code
+//! 1.34 × plain Thomas instead of 1.06 × (docs/performance.md, "Line kernels"). The code
 //! therefore drops them once they are negligible: f_i is set to 0 when |f_i| < 2⁻⁶⁰ and A_j when
 //! |A_j| < 2⁻⁶⁰ (|b_{m-1}| + |d_{m-1}| + |a_{m-1}|) (`FLUSH_RTOL`); once zero they stay zero and
 //! the remaining rows are plain Thomas plus exact zeros. Dropping f_i perturbs the reduced row i

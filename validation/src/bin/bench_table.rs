@@ -1,4 +1,4 @@
-//! Turns criterion results into the markdown table of the README (`cargo bench-table`).
+//! Turns criterion results into the markdown table of docs/performance.md (`cargo bench-table`).
 //!
 //! Reads `<criterion dir>/<group>/*/*/new/{benchmark,estimates}.json` as written by
 //! `cargo bench --bench jbearing_benches -- <group>` and prints, in markdown:
@@ -11,9 +11,14 @@
 //! - for the `kernel` group, the ratios behind the performance targets of issue 2, item 5, each
 //!   marked met or missed.
 //!
-//! Usage: `cargo bench-table [GROUP] [--criterion-dir DIR]`; GROUP defaults to `kernel`, DIR to
-//! `$CARGO_TARGET_DIR/criterion` or the workspace's `target/criterion`.
+//! Usage: `cargo bench-table [GROUP] [--criterion-dir DIR] [--write-docs]`; GROUP defaults to
+//! `kernel`, DIR to `$CARGO_TARGET_DIR/criterion` or the workspace's `target/criterion`.
+//! `--write-docs` also puts the output into docs/performance.md, in place of the block between
+//! `<!-- BEGIN generated: cargo bench-table -->` (`cargo bench-table GROUP` for another group)
+//! and `<!-- END generated -->`.
 use anyhow::{Context, Result, bail};
+use jbearing_validation::generated_docs::{docs_page, take_report, write_generated_block};
+use jbearing_validation::{report, report_part};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::fs;
@@ -32,14 +37,16 @@ type Results = BTreeMap<String, BTreeMap<u64, Measured>>;
 fn main() -> Result<()> {
     let mut group = "kernel".to_string();
     let mut dir: Option<PathBuf> = None;
+    let mut write_docs = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
             "--criterion-dir" => {
                 dir = Some(args.next().context("--criterion-dir needs a path")?.into())
             }
+            "--write-docs" => write_docs = true,
             "-h" | "--help" => {
-                println!("usage: bench_table [GROUP] [--criterion-dir DIR]");
+                println!("usage: bench_table [GROUP] [--criterion-dir DIR] [--write-docs]");
                 return Ok(());
             }
             _ => group = a,
@@ -68,12 +75,22 @@ fn main() -> Result<()> {
         .flat_map(|r| r.values().map(|m| m.modified))
         .max()
         .unwrap_or(SystemTime::UNIX_EPOCH);
-    println!("Machine: {}. Measured: {}.", machine(), utc(newest));
-    println!();
+    report!("Machine: {}. Measured: {}.", machine(), utc(newest));
+    report!();
     print_table(&results);
     if group == "kernel" {
-        println!();
+        report!();
         print_kernel_ratios(&results);
+    }
+    if write_docs {
+        let command = if group == "kernel" {
+            "cargo bench-table".to_string()
+        } else {
+            format!("cargo bench-table {group}")
+        };
+        let page = docs_page("performance.md");
+        write_generated_block(&page, &command, &take_report())?;
+        eprintln!("wrote the block of {command:?} in {}", page.display());
     }
     Ok(())
 }
@@ -149,25 +166,25 @@ fn print_table(results: &Results) {
             n.to_string(),
         )
     });
-    print!("| median ns per unknown |");
+    report_part!("| median ns per unknown |");
     for m in &params {
-        print!(" m = {m} |");
+        report_part!(" m = {m} |");
     }
-    println!();
-    print!("|---|");
+    report!();
+    report_part!("|---|");
     for _ in &params {
-        print!("---:|");
+        report_part!("---:|");
     }
-    println!();
+    report!();
     for name in names {
-        print!("| {name} |");
+        report_part!("| {name} |");
         for m in &params {
             match results[name].get(m) {
-                Some(v) => print!(" {} |", fmt(v.ns_per_unknown)),
-                None => print!(" – |"),
+                Some(v) => report_part!(" {} |", fmt(v.ns_per_unknown)),
+                None => report_part!(" – |"),
             }
         }
-        println!();
+        report!();
     }
 }
 
@@ -241,28 +258,28 @@ fn print_kernel_ratios(results: &Results) {
     let mut params: Vec<u64> = results.values().flat_map(|r| r.keys().copied()).collect();
     params.sort_unstable();
     params.dedup();
-    print!("| ratio of ns per unknown |");
+    report_part!("| ratio of ns per unknown |");
     for m in &params {
-        print!(" m = {m} |");
+        report_part!(" m = {m} |");
     }
-    println!(" target | verdict |");
-    print!("|---|");
+    report!(" target | verdict |");
+    report_part!("|---|");
     for _ in &params {
-        print!("---:|");
+        report_part!("---:|");
     }
-    println!("---|---|");
+    report!("---|---|");
     for r in &ratios {
         let (Some(num), Some(den)) = (results.get(r.num), results.get(r.den)) else {
             continue;
         };
-        print!("| {} |", r.what);
+        report_part!("| {} |", r.what);
         let mut verdict: Option<bool> = None;
         let mut judged = Vec::new();
         for m in &params {
             match (num.get(m), den.get(m)) {
                 (Some(a), Some(b)) => {
                     let q = a.ns_per_unknown / b.ns_per_unknown;
-                    print!(" {q:.2} |");
+                    report_part!(" {q:.2} |");
                     if let Some((_, applies, passes)) = r.target
                         && applies(*m)
                     {
@@ -271,17 +288,17 @@ fn print_kernel_ratios(results: &Results) {
                         judged.push(format!("{q:.2}"));
                     }
                 }
-                _ => print!(" – |"),
+                _ => report_part!(" – |"),
             }
         }
         match (r.target, verdict) {
-            (Some((t, _, _)), Some(ok)) => println!(
+            (Some((t, _, _)), Some(ok)) => report!(
                 " {t} | {} ({}) |",
                 if ok { "met" } else { "missed" },
                 judged.join(", ")
             ),
-            (Some((t, _, _)), None) => println!(" {t} | not measured |"),
-            (None, _) => println!(" (information) | |"),
+            (Some((t, _, _)), None) => report!(" {t} | not measured |"),
+            (None, _) => report!(" (information) | |"),
         }
     }
 }

@@ -20,13 +20,15 @@
 //!
 //! Usage: `cargo run --release -p jbearing-validation --bin inverse_timing [-- [--quick |
 //! --default | --grids] [--repeat N] [--jacobian exact|broyden|differences]
-//! [--linear adi|multigrid|lu]]`
+//! [--linear adi|multigrid|lu] [--write-docs]]`
 //! (`--quick`: the 60 × 15 rows only, to check that it runs; `--default`: the 120 × 31, 1° row
 //! only, for before/after comparisons of a change; `--grids`: the three grid-scaling rows at 1°;
 //! `--linear`: the frozen-switch linear solver, default the film's default (ADI-Krylov);
 //! `--repeat N`: run every row N times and
 //! report the run with the median time, for a machine shared with other jobs; `--jacobian`:
-//! the inverse Newton's Jacobian, default exact). "ms per film step" includes the exact
+//! the inverse Newton's Jacobian, default exact; `--write-docs`: also put the report into
+//! docs/performance.md in place of the block `<!-- BEGIN generated: COMMAND -->` …
+//! `<!-- END generated -->`, COMMAND being this command line without `--write-docs`). "ms per film step" includes the exact
 //! Jacobian's two linear solves; "Krylov iterations per film step" counts the film solves only.
 
 use anyhow::{Context, Result};
@@ -37,6 +39,8 @@ use jbearing_solvers::inverse::{
 use jbearing_solvers::load::{FnLoad, OperatingHistory};
 use jbearing_solvers::reynolds::{FilmState, LinearSolver, TimeScheme};
 use jbearing_validation::compressor_main::{FEED, OMEGA, pulse_load, reynolds_params};
+use jbearing_validation::generated_docs::{docs_page, take_report, write_generated_block};
+use jbearing_validation::report;
 use std::f64::consts::TAU;
 
 fn thread_cpu_seconds() -> f64 {
@@ -162,7 +166,9 @@ fn machine() -> String {
 }
 
 fn main() -> Result<()> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let write_docs = args.iter().any(|a| a == "--write-docs");
+    args.retain(|a| a != "--write-docs");
     let mut rest = args.iter();
     while let Some(a) = rest.next() {
         match a.as_str() {
@@ -172,7 +178,7 @@ fn main() -> Result<()> {
             }
             other => anyhow::bail!(
                 "unknown argument {other:?} (expected --quick, --default, --grids, --repeat N, \
-                 --jacobian exact|broyden|differences, --linear adi|multigrid|lu)"
+                 --jacobian exact|broyden|differences, --linear adi|multigrid|lu, --write-docs)"
             ),
         }
     }
@@ -220,7 +226,7 @@ fn main() -> Result<()> {
             (120, 31, 0.5),
         ]
     };
-    println!(
+    report!(
         "Machine: {}. Measured: {}. Thread CPU time, one core, release build; {:?} Jacobian; \
          {:?} linear solver{}.\n",
         machine(),
@@ -233,10 +239,10 @@ fn main() -> Result<()> {
             String::new()
         }
     );
-    println!(
+    report!(
         "| grid | step | run-in + cycle (s) | per cycle (s) | film / Newton share | film steps per time step | ms per film step | Krylov iterations per film step | stalled / split steps | cycle min h_min (µm) | mean power (W) |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    report!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (nt, nz, step) in plan {
         let mut runs = (0..repeat)
             .map(|_| run(nt, nz, step, jacobian, linear))
@@ -247,7 +253,7 @@ fn main() -> Result<()> {
         let steps = info.run_in_steps + info.steps_per_cycle;
         let per_cycle = r.total * info.steps_per_cycle as f64 / steps as f64;
         let evals = info.film_evaluations as f64;
-        println!(
+        report!(
             "| {} × {} | {}° | {:.1} | {:.1} | {:.1} % / {:.1} % | {:.2} | {:.2} | {:.1} | {} / {} | {:.3} | {:.2} |",
             r.grid.0,
             r.grid.1,
@@ -265,8 +271,19 @@ fn main() -> Result<()> {
             r.solution.summary.mean_power_loss,
         );
     }
-    println!(
+    report!(
         "\n\"per cycle\" scales the run-in + cycle time by (cycle steps) / (run-in + cycle steps)."
     );
+    if write_docs {
+        // The block is named by the command that measured it, --write-docs left out.
+        let mut command =
+            "cargo run --release -p jbearing-validation --bin inverse_timing".to_string();
+        if !args.is_empty() {
+            command = format!("{command} -- {}", args.join(" "));
+        }
+        let page = docs_page("performance.md");
+        write_generated_block(&page, &command, &take_report())?;
+        eprintln!("wrote the block of {command:?} in {}", page.display());
+    }
     Ok(())
 }

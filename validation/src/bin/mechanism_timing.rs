@@ -11,8 +11,10 @@
 //! machine inflate them little; release build, one core; each row is the median of N runs.
 //!
 //! Usage: `cargo run --release -p jbearing-validation --bin mechanism_timing [-- [--quick]
-//! [--repeat N]]` (`--quick`: the closed forms only; `--repeat N`: runs per row, default 21 for
-//! the closed forms and 3 for the Reynolds film).
+//! [--repeat N] [--write-docs]]` (`--quick`: the closed forms only; `--repeat N`: runs per row,
+//! default 21 for the closed forms and 3 for the Reynolds film; `--write-docs`: also put the
+//! report into docs/performance.md in place of the block `<!-- BEGIN generated: COMMAND -->` …
+//! `<!-- END generated -->`, COMMAND being this command line without `--write-docs`).
 
 use anyhow::{Context, Result};
 use jbearing_solvers::closed_form::ClosedFormModel;
@@ -20,6 +22,8 @@ use jbearing_solvers::mechanism::{
     Integrator, JointFilm, LubricatedJointParams, MechanismParams, MechanismSolution,
     RodSliderJoint, SliderCrankParams, solve_mechanism,
 };
+use jbearing_validation::generated_docs::{docs_page, take_report, write_generated_block};
+use jbearing_validation::report;
 
 fn thread_cpu_seconds() -> f64 {
     let mut t = libc::timespec {
@@ -60,7 +64,7 @@ fn time_runs(params: &MechanismParams, repeat: usize) -> Result<(f64, MechanismS
 
 fn row(label: &str, integrator: &str, seconds: f64, s: &MechanismSolution) {
     let i = &s.info;
-    println!(
+    report!(
         "| {label} | {integrator} | {:.2} | {} | {} | {} | {:.1} | {:.0} | {:.2} |",
         1e3 * seconds,
         i.steps,
@@ -73,7 +77,9 @@ fn row(label: &str, integrator: &str, seconds: f64, s: &MechanismSolution) {
 }
 
 fn main() -> Result<()> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let write_docs = args.iter().any(|a| a == "--write-docs");
+    args.retain(|a| a != "--write-docs");
     let quick = args.iter().any(|a| a == "--quick");
     let repeat: Option<usize> = match args.iter().position(|a| a == "--repeat") {
         Some(i) => Some(
@@ -86,19 +92,19 @@ fn main() -> Result<()> {
     };
     for a in &args {
         if !(a == "--quick" || a == "--repeat" || a.parse::<usize>().is_ok()) {
-            anyhow::bail!("unknown argument {a:?} (expected --quick, --repeat N)");
+            anyhow::bail!("unknown argument {a:?} (expected --quick, --repeat N, --write-docs)");
         }
     }
-    println!(
+    report!(
         "Machine: {}. Measured: {}. Thread CPU time, one core, release build. [Flores2009] §8: \
          5000 rpm, c = 0.2 mm, μ = 400 cP, two crank turns from the start, 360 samples per turn.\n",
         machine(),
         jiff::Timestamp::now().strftime("%Y-%m-%d %H:%M UTC"),
     );
-    println!(
+    report!(
         "| film | integrator | median time (ms) | steps | evaluations / Newton iterations | film steps | min h_min (µm) | max joint force (N) | max crank moment (N m) |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|");
+    report!("|---|---|---|---|---|---|---|---|---|");
     let mech = SliderCrankParams::flores2009();
     let cf_repeat = repeat.unwrap_or(21);
     for model in ClosedFormModel::ALL {
@@ -117,12 +123,23 @@ fn main() -> Result<()> {
         let p = MechanismParams::new(mech, RodSliderJoint::Lubricated(joint));
         let (t, s) = time_runs(&p, repeat.unwrap_or(3))?;
         row("Reynolds 120 × 31", "BDF2 360/turn", t, &s);
-        println!(
+        report!(
             "\nReynolds film: {:.2} film steps per time step, {:.2} ms per film step (with the exact \
              Jacobian's solves).",
             s.info.film_steps as f64 / s.info.steps as f64,
             1e3 * t / s.info.film_steps as f64
         );
+    }
+    if write_docs {
+        // The block is named by the command that measured it, --write-docs left out.
+        let mut command =
+            "cargo run --release -p jbearing-validation --bin mechanism_timing".to_string();
+        if !args.is_empty() {
+            command = format!("{command} -- {}", args.join(" "));
+        }
+        let page = docs_page("performance.md");
+        write_generated_block(&page, &command, &take_report())?;
+        eprintln!("wrote the block of {command:?} in {}", page.display());
     }
     Ok(())
 }
