@@ -7,8 +7,9 @@
 //!   short-bearing film (default time scheme, BDF2): the cost of the Newton machinery alone.
 //! - `inverse/periodic_short_bearing`: the whole solve to a periodic orbit (default tolerances).
 use criterion::Criterion;
+use jbearing_solvers::closed_form::{ClosedFormModel, ClosedFormParams};
 use jbearing_solvers::inverse::{
-    InverseParams, NoObserver, ShortBearingFilm, ShortBearingParams, TimeScheme, solve_inverse,
+    ClosedFormFilm, InverseParams, NoObserver, TimeScheme, solve_inverse,
 };
 use jbearing_solvers::load::{FnLoad, OperatingHistory};
 use std::f64::consts::TAU;
@@ -39,14 +40,18 @@ fn history() -> MainBearingHistory {
     }
 }
 
-fn short_film() -> ShortBearingFilm {
-    ShortBearingFilm::new(ShortBearingParams {
+fn short_film() -> ClosedFormFilm {
+    let params = ClosedFormParams {
         radius: 27.43e-3,
         length: 18.288e-3,
         radial_clearance: 48.9e-6,
         viscosity: 0.02,
-        scheme: TimeScheme::default(),
-    })
+    };
+    ClosedFormFilm::new(
+        ClosedFormModel::ShortGumbelMovingFilm,
+        params,
+        TimeScheme::default(),
+    )
     .unwrap()
 }
 

@@ -18,12 +18,13 @@ use jbearing_solvers::mobility::{
     MobilityModel, MobilityParams, OrbitInfo, OrbitParams, PeriodicLoad, solve_orbit,
 };
 
+use jbearing_solvers::closed_form::{ClosedFormFilm, ClosedFormModel, ClosedFormParams};
 use jbearing_solvers::inverse::{
     InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, InverseStart,
-    InverseWarning, ReynoldsFilm, ShortBearingFilm, ShortBearingParams, solve_inverse_from,
+    InverseWarning, ReynoldsFilm, solve_inverse_from,
 };
 use jbearing_solvers::load::LoadHistory;
-use jbearing_solvers::reynolds::{GridParams, Groove as ReynoldsGroove, ReynoldsParams};
+use jbearing_solvers::reynolds::{GridParams, ReynoldsParams};
 use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
 use ndarray::Array3;
 
@@ -78,12 +79,13 @@ pub enum RunError {
         source: MobilityError,
     },
     /// The mobility map could not be built.
-    #[error("case '{case}': mobility map: {message}")]
+    #[error("case '{case}': mobility map: {source}")]
     MobilityMap {
         /// Case name.
         case: String,
-        /// What failed.
-        message: String,
+        /// What failed (shared: the map of one L/D is built once per process).
+        #[source]
+        source: std::sync::Arc<MapBuildError>,
     },
     /// Another case of the same batch has the same name (its output files would be
     /// overwritten).
@@ -100,22 +102,24 @@ pub enum RunError {
         other: String,
     },
     /// The rigorous (inverse) method failed.
-    #[error("case '{case}': rigorous method: {message}")]
+    #[error("case '{case}': rigorous method: {source}")]
     Rigorous {
         /// Case name.
         case: String,
-        /// The solver's error.
-        message: String,
+        /// The solver's error, with its numbers.
+        #[source]
+        source: RigorousError,
     },
     /// The heat balance of a method did not close (or a solve inside it failed).
-    #[error("case '{case}': {method} method: {message}")]
+    #[error("case '{case}': {method} method: {}", heat::error_chain(source.as_ref()))]
     HeatBalance {
         /// Case name.
         case: String,
         /// Which method.
         method: Method,
-        /// The balance's error and its sources.
-        message: String,
+        /// The balance's error; a failed solve inside it is its source.
+        #[source]
+        source: Box<jbearing_solvers::heat_balance::HeatBalanceError<RunError>>,
     },
     /// Every method the case asked for failed.
     #[error("case '{case}': every method failed: {}", messages.join("; "))]
@@ -154,6 +158,31 @@ pub enum RunError {
     },
 }
 
+/// Why the rigorous method failed: the film could not be set up, or the inverse solve failed.
+#[derive(Debug, thiserror::Error)]
+pub enum RigorousError {
+    /// The Reynolds film's parameters are out of range.
+    #[error("Reynolds film: {0}")]
+    ReynoldsFilm(#[from] jbearing_solvers::reynolds::ReynoldsError),
+    /// The closed-form film's parameters are out of range.
+    #[error("closed-form film: {0}")]
+    ClosedFormFilm(#[from] jbearing_solvers::closed_form::ClosedFormError),
+    /// The inverse solve failed (collapse, Newton, film; with time, crank angle and ε).
+    #[error(transparent)]
+    Inverse(#[from] jbearing_solvers::inverse::InverseError),
+}
+
+/// Why the finite-length mobility map of an L/D could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum MapBuildError {
+    /// The squeeze film of the map is out of range.
+    #[error("squeeze film: {0}")]
+    SqueezeFilm(#[from] jbearing_solvers::squeeze_film::SqueezeFilmError),
+    /// A node of the map failed.
+    #[error(transparent)]
+    Map(#[from] jbearing_solvers::mobility::MobilityMapError),
+}
+
 /// What one case produced.
 #[derive(Debug, Clone)]
 pub struct CaseOutcome {
@@ -169,7 +198,7 @@ pub struct CaseOutcome {
 /// ```text
 ///   Case ──► CaseHistory (LoadHistory: load, ω_j(t), ω_b(t), p_feed(t) per groove)
 ///        ──► film: ReynoldsFilm (JFO)        [default, solver.rigorous_film = "reynolds"]
-///                  | ShortBearingFilm        [solver.rigorous_film = "short_bearing"]
+///                  | ClosedFormFilm (moving short Gumbel) [solver.rigorous_film = "short_bearing"]
 ///        ──► solve_inverse(InverseParams from [solver]) ──► inverse_result ──► MethodResult
 /// ```
 pub fn run_rigorous(case: &Case, observer: &dyn RunObserver) -> Result<MethodResult, RunError> {
@@ -183,7 +212,7 @@ pub enum RigorousStart {
     /// The Reynolds (JFO) film's.
     Reynolds(Box<InverseStart<jbearing_solvers::reynolds::FilmState>>),
     /// The short-bearing film's.
-    ShortBearing(InverseStart<jbearing_solvers::inverse::ShortBearingState>),
+    ShortBearing(InverseStart<jbearing_solvers::inverse::ClosedFormState>),
 }
 
 /// [`run_rigorous`] started from where an earlier solve of the case ended (`start`, skipping
@@ -196,22 +225,21 @@ pub fn run_rigorous_from(
     let params = inverse_params(case);
     let history = CaseHistory::new(case);
     let mut adapter = InverseAdapter::new(&case.name, observer);
-    let fail = |message: String| RunError::Rigorous {
+    let fail = |source: RigorousError| RunError::Rigorous {
         case: case.name.clone(),
-        message,
+        source,
     };
     let (solution, end, description) = match case.solver.rigorous_film {
         RigorousFilm::Reynolds => {
             observer.method_started(&case.name, Method::Rigorous);
-            let mut film = ReynoldsFilm::new(reynolds_params(case))
-                .map_err(|e| fail(format!("Reynolds film: {e}")))?;
+            let mut film = ReynoldsFilm::new(reynolds_params(case)).map_err(|e| fail(e.into()))?;
             let from = match start {
                 Some(RigorousStart::Reynolds(s)) => Some(InverseStart::clone(s)),
                 _ => None,
             };
             let (solution, end) =
                 solve_inverse_from(&params, &history, &mut film, &mut adapter, from)
-                    .map_err(|e| fail(e.to_string()))?;
+                    .map_err(|e| fail(e.into()))?;
             (
                 solution,
                 RigorousStart::Reynolds(Box::new(end)),
@@ -221,21 +249,24 @@ pub fn run_rigorous_from(
         }
         RigorousFilm::ShortBearing => {
             observer.method_started(&case.name, Method::Rigorous);
-            let mut film = ShortBearingFilm::new(ShortBearingParams {
-                radius: case.radius,
-                length: case.length,
-                radial_clearance: case.radial_clearance,
-                viscosity: case.viscosity,
-                scheme: case.solver.time_scheme,
-            })
-            .map_err(|e| fail(e.to_string()))?;
+            let mut film = ClosedFormFilm::new(
+                ClosedFormModel::ShortGumbelMovingFilm,
+                ClosedFormParams {
+                    radius: case.radius,
+                    length: case.length,
+                    radial_clearance: case.radial_clearance,
+                    viscosity: case.viscosity,
+                },
+                case.solver.time_scheme,
+            )
+            .map_err(|e| fail(e.into()))?;
             let from = match start {
                 Some(RigorousStart::ShortBearing(s)) => Some(s.clone()),
                 _ => None,
             };
             let (solution, end) =
                 solve_inverse_from(&params, &history, &mut film, &mut adapter, from)
-                    .map_err(|e| fail(e.to_string()))?;
+                    .map_err(|e| fail(e.into()))?;
             (
                 solution,
                 RigorousStart::ShortBearing(end),
@@ -260,17 +291,7 @@ pub fn reynolds_params(case: &Case) -> ReynoldsParams {
         bulk_modulus: case.bulk_modulus,
         cavitation_pressure: case.cavitation_pressure,
         ambient_pressure: case.ambient_pressure,
-        grooves: case
-            .grooves
-            .iter()
-            .map(|g| ReynoldsGroove {
-                center_angle: g.center_angle,
-                center_z: g.axial_center,
-                angular_width: g.circumferential_length / case.radius,
-                axial_width: g.axial_width,
-                cutoff_film_fraction: case.starved_film_fraction,
-            })
-            .collect(),
+        grooves: case.grooves.clone(),
         grid: GridParams {
             n_theta: case.n_theta,
             n_z: case.n_z,
@@ -818,9 +839,9 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
         MobilityModelChoice::Map => {
             // Finite-length mobility (docs/conventions.md §6, Goenka's construction): pure-squeeze
             // solutions of our own Reynolds-condition film over (ε, load angle) for this L/D.
-            let map = mobility_map(ld).map_err(|message| RunError::MobilityMap {
+            let map = mobility_map(ld).map_err(|source| RunError::MobilityMap {
                 case: case.name.clone(),
-                message,
+                source,
             })?;
             let map: &MobilityMap = &map;
             check_model(map, ld);
@@ -845,10 +866,11 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
 /// The finite-length mobility map of `ld` (21 × 19 nodes up to ε = 0.97), built once per
 /// process and shared: it depends on L/D alone (the map is dimensionless), and a heat balance
 /// or a batch of cases of one bearing asks for it many times.
-fn mobility_map(ld: f64) -> Result<std::sync::Arc<MobilityMap>, String> {
+fn mobility_map(ld: f64) -> Result<std::sync::Arc<MobilityMap>, std::sync::Arc<MapBuildError>> {
     use std::collections::HashMap;
     use std::sync::{Arc, Mutex, OnceLock};
-    type Cache = Mutex<HashMap<u64, Arc<OnceLock<Result<Arc<MobilityMap>, String>>>>>;
+    type Built = Result<Arc<MobilityMap>, Arc<MapBuildError>>;
+    type Cache = Mutex<HashMap<u64, Arc<OnceLock<Built>>>>;
     static CACHE: OnceLock<Cache> = OnceLock::new();
     // One cell per L/D: the first caller builds it, concurrent callers of the same L/D wait
     // for that build instead of repeating it; other L/D values build in parallel.
@@ -860,8 +882,8 @@ fn mobility_map(ld: f64) -> Result<std::sync::Arc<MobilityMap>, String> {
         .or_default()
         .clone();
     cell.get_or_init(|| {
-        let film =
-            ReynoldsSqueezeFilm::new(SqueezeFilmParams::new(ld)).map_err(|e| e.to_string())?;
+        let film = ReynoldsSqueezeFilm::new(SqueezeFilmParams::new(ld))
+            .map_err(|e| Arc::new(MapBuildError::from(e)))?;
         MobilityMap::build(
             &film,
             &MobilityMapParams {
@@ -871,7 +893,7 @@ fn mobility_map(ld: f64) -> Result<std::sync::Arc<MobilityMap>, String> {
             },
         )
         .map(Arc::new)
-        .map_err(|e| e.to_string())
+        .map_err(|e| Arc::new(MapBuildError::from(e)))
     })
     .clone()
 }
@@ -1151,7 +1173,7 @@ pub mod heat {
         .map_err(|e| RunError::HeatBalance {
             case: case.name.clone(),
             method,
-            message: error_chain(&e),
+            source: Box::new(e),
         })?;
         let t = info.effective_temperature;
         let history = info
@@ -1193,12 +1215,17 @@ pub mod heat {
     }
 
     /// The error and its sources, joined by ": ".
+    /// `e` and its sources in one line, "outer: inner: …"; a source whose text the line
+    /// already holds (errors that print their source in their own message) is not repeated.
     pub fn error_chain(e: &dyn std::error::Error) -> String {
         let mut s = e.to_string();
         let mut src = e.source();
         while let Some(inner) = src {
-            s.push_str(": ");
-            s.push_str(&inner.to_string());
+            let text = inner.to_string();
+            if !s.contains(&text) {
+                s.push_str(": ");
+                s.push_str(&text);
+            }
             src = inner.source();
         }
         s
@@ -1457,19 +1484,35 @@ mod method_failure_tests {
         Case::from_text(&text, Path::new("two_methods.toml")).expect("valid case")
     }
 
+    /// An inverse failure as the solver reports it (its text names the injected quantity).
     fn failing(case: &Case, _: &dyn RunObserver) -> Result<MethodResult, RunError> {
         Err(RunError::Rigorous {
             case: case.name.clone(),
-            message: "injected failure".into(),
+            source: RigorousError::Inverse(
+                jbearing_solvers::inverse::InverseError::NonFiniteLoad {
+                    quantity: "injected failure",
+                    time: 0.5,
+                },
+            ),
         })
     }
 
     fn failing_mobility(case: &Case, _: &dyn RunObserver) -> Result<MethodResult, RunError> {
         Err(RunError::MobilityMap {
             case: case.name.clone(),
-            message: "injected failure".into(),
+            source: std::sync::Arc::new(MapBuildError::Map(
+                jbearing_solvers::mobility::MobilityMapError::InvalidParameter {
+                    name: "injected failure",
+                    value: 2.0,
+                },
+            )),
         })
     }
+
+    const RIGOROUS_FAILURE: &str = "case 'two_methods': rigorous method: non-finite injected \
+                                    failure in the load history at t = 5.000000e-1 s";
+    const MOBILITY_FAILURE: &str =
+        "case 'two_methods': mobility map: invalid map parameter injected failure = 2";
 
     fn status(report: &CaseReport, key: &str) -> Option<String> {
         report
@@ -1490,7 +1533,7 @@ mod method_failure_tests {
         assert!(report.method(Method::Mobility).is_none());
         assert_eq!(
             status(&report, MOBILITY_STATUS).as_deref(),
-            Some("failed: case 'two_methods': mobility map: injected failure")
+            Some(format!("failed: {MOBILITY_FAILURE}").as_str())
         );
         assert_eq!(status(&report, RIGOROUS_STATUS), None);
         // The summary rows carry the rigorous values alone.
@@ -1505,7 +1548,7 @@ mod method_failure_tests {
         assert!(report.method(Method::Mobility).is_some());
         assert_eq!(
             status(&report, RIGOROUS_STATUS).as_deref(),
-            Some("failed: case 'two_methods': rigorous method: injected failure")
+            Some(format!("failed: {RIGOROUS_FAILURE}").as_str())
         );
     }
 
@@ -1515,8 +1558,16 @@ mod method_failure_tests {
             .expect_err("nothing to report");
         assert_eq!(
             err.to_string(),
-            "case 'two_methods': every method failed: case 'two_methods': rigorous method: \
-             injected failure; case 'two_methods': mobility map: injected failure"
+            format!(
+                "case 'two_methods': every method failed: {RIGOROUS_FAILURE}; {MOBILITY_FAILURE}"
+            )
+        );
+        // The typed source survives for callers that match on it.
+        let source = std::error::Error::source(&failing(&case(), &Quiet).unwrap_err())
+            .map(|s| s.to_string());
+        assert_eq!(
+            source.as_deref(),
+            Some("non-finite injected failure in the load history at t = 5.000000e-1 s")
         );
     }
 }

@@ -9,6 +9,30 @@
 //! (a `thiserror` enum whose variants carry the numbers) when something fails. Progress of long
 //! runs reaches the caller through observer traits, never through a print.
 //!
+//! # In ten lines
+//!
+//! A steady load to the eccentricity that carries it, with the mass-conserving Reynolds film
+//! (`use jbearing_solvers::prelude::*` brings the types of the everyday jobs):
+//!
+//! ```
+//! use jbearing_solvers::prelude::*;
+//!
+//! // R = 20 mm, L = 20 mm, c = 20 µm, μ = 0.02 Pa s; a coarse grid keeps the doctest quick.
+//! let mut params = ReynoldsParams::plain(0.02, 0.02, 20e-6, 0.02);
+//! params.grid = GridParams { n_theta: 48, n_z: 11 };
+//! // Oil at ambient pressure along the widest gap (Raimondi & Boyd's steady bearing).
+//! params.supply = SupplyModel::AxialLineAtMaxGap;
+//! let mut film = ReynoldsSolver::new(params)?;
+//! let rotation = OperatingConditions { journal_speed: 300.0, ..Default::default() };
+//! let (solution, info) = film.solve_steady_load([0.0, -2000.0], &rotation)?;
+//! let eps = info.eccentricity_ratio[0].hypot(info.eccentricity_ratio[1]);
+//! assert!(eps > 0.0 && eps < 1.0 && solution.min_film_thickness < 20e-6);
+//! # Ok::<(), ReynoldsError>(())
+//! ```
+//!
+//! The runnable programs in the repository's `examples/` (steady bearing, inverse cycle of a
+//! grooved bearing, the mobility answer beside it) show the three everyday jobs end to end.
+//!
 //! Modules
 //! - [`closed_form`]: the closed-form film models of \[Flores2006\] and \[Flores2009\] for a moving journal (short and long
 //!   bearing, Sommerfeld and Gumbel films, Pinkus–Sternlicht) and their static equilibrium.
@@ -44,6 +68,7 @@ pub mod inverse;
 pub mod load;
 pub mod mechanism;
 pub mod mobility;
+pub mod prelude;
 pub mod reynolds;
 pub mod ritz;
 pub mod slider_crank;

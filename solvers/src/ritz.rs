@@ -118,6 +118,16 @@ pub enum RitzError {
 }
 
 /// Assemble and solve eq. 12 for the coefficients C_i/Λ.
+///
+/// ```
+/// use jbearing_solvers::ritz::{RitzParams, solve_ritz};
+///
+/// let solution = solve_ritz(&RitzParams::new(0.6, 1.0))?;
+/// // The Ritz pressure vanishes at the bearing's ends and is positive inside the film.
+/// assert!(solution.pressure(1.0, 0.5).abs() < 1e-12);
+/// assert!(solution.pressure(1.0, 0.0) > 0.0);
+/// # Ok::<(), jbearing_solvers::ritz::RitzError>(())
+/// ```
 pub fn solve_ritz(params: &RitzParams) -> Result<RitzSolution, RitzError> {
     let eps = params.eccentricity_ratio;
     let lam = params.radius_to_length;

@@ -1,6 +1,6 @@
 //! Time discretization shared by every film of the crate: the Reynolds film
 //! ([`crate::reynolds::ReynoldsSolver::solve_step`]) and the analytic short-bearing film of the
-//! inverse solver ([`crate::inverse::ShortBearingFilm`]). One enum and one default (BDF2),
+//! inverse solver ([`crate::closed_form::ClosedFormFilm`]). One enum and one default (BDF2),
 //! used alike by the library, the application's case files and the validation tests.
 
 /// How a film advances from t^n to t^{n+1} = t^n + Δt_n.

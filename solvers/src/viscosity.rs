@@ -269,6 +269,16 @@ impl IsoViscosityGrade {
     }
 
     /// The grade's Vogel curve (step 5 of the type's docs).
+    ///
+    /// ```
+    /// use jbearing_solvers::viscosity::IsoViscosityGrade;
+    ///
+    /// let oil = IsoViscosityGrade::from_name("ISO VG 100").unwrap();
+    /// let vogel = oil.vogel();
+    /// // Thinner when hotter; ν(40 °C) is the grade's number in mm²/s.
+    /// assert!(vogel.viscosity(80.0) < vogel.viscosity(40.0));
+    /// assert!((oil.kinematic_viscosity(40.0) - 100.0).abs() < 1e-9);
+    /// ```
     pub fn vogel(self) -> Vogel {
         let point = |t: f64| (t, self.walther_dynamic_viscosity(t));
         Vogel::through([point(40.0), point(70.0), point(100.0)])

@@ -69,19 +69,8 @@ pub use self::error::{CaseError, Locator};
 use self::schema::*;
 use self::units::{Quantity, column_factor, deg_to_rad, rpm_to_rad_s};
 use crate::output::{Geometry, InputFile, Parameter};
-
-/// A rectangular feed groove, fixed in the bearing frame, SI.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Groove {
-    /// Angle of the groove's centre θ_g, from +x towards +y (rad).
-    pub center_angle: f64,
-    /// Axial position of the groove's centre (m), 0 = mid-plane.
-    pub axial_center: f64,
-    /// Circumferential length on the bearing surface (m).
-    pub circumferential_length: f64,
-    /// Axial width (m).
-    pub axial_width: f64,
-}
+/// The feed groove of the film model, SI (one type for the case and the solver).
+pub use jbearing_solvers::reynolds::Groove;
 
 /// A periodic history over crank angle: a constant or a table, linearly interpolated and wrapped.
 #[derive(Debug, Clone, PartialEq)]
@@ -532,13 +521,13 @@ impl Case {
             ));
             p.push(Parameter::number(
                 &format!("groove{i}_axial_center"),
-                g.axial_center,
+                g.center_z,
                 "m",
                 "groove centre, axial",
             ));
             p.push(Parameter::number(
                 &format!("groove{i}_circumferential_length"),
-                g.circumferential_length,
+                g.angular_width * self.radius,
                 "m",
                 "groove length around",
             ));
@@ -937,7 +926,132 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         ));
     }
     let name = case_name(raw.name.as_deref(), ctx)?;
-    let b = &raw.bearing;
+    let (radius, length, radial_clearance) = resolve_bearing(&raw.bearing, ctx)?;
+    let (grooves, starved_film_fraction) = resolve_grooves(&raw, radius, length, ctx)?;
+
+    let l = &raw.lubricant;
+    let ResolvedViscosity {
+        viscosity,
+        model: viscosity_model,
+        oil,
+        heat_balance,
+    } = resolve_viscosity(l, ctx)?;
+    let bulk_modulus = ctx.positive("lubricant.bulk_modulus_pa", l.bulk_modulus_pa)?;
+    let cavitation_pressure =
+        ctx.finite("lubricant.cavitation_pressure_pa", l.cavitation_pressure_pa)?;
+    let ambient_pressure = ctx.finite("lubricant.ambient_pressure_pa", l.ambient_pressure_pa)?;
+    if cavitation_pressure > ambient_pressure {
+        return Err(ctx.err(
+            "lubricant.cavitation_pressure_pa",
+            format!("{cavitation_pressure} Pa is above the ambient pressure {ambient_pressure} Pa"),
+        ));
+    }
+
+    let o = &raw.operation;
+    let cycle_deg = ctx.positive("operation.cycle_deg", o.cycle_deg)?;
+    let crank_speed = rpm_to_rad_s(ctx.positive("operation.crank_speed_rpm", o.crank_speed_rpm)?);
+    let mut input_files = Vec::new();
+    let (journal_speed, bearing_speed) = resolve_speeds(o, cycle_deg, &mut input_files, ctx)?;
+
+    let LoadTable {
+        angles_deg: load_angles_deg,
+        forces: load_forces,
+        interpolation: interp,
+    } = resolve_load(&raw.load, cycle_deg, crank_speed, &mut input_files, ctx)?;
+
+    let feed_pressure = resolve_feed(
+        &raw.feed,
+        &grooves,
+        ambient_pressure,
+        cycle_deg,
+        &mut input_files,
+        ctx,
+    )?;
+
+    let g = &raw.grid;
+    check_grid(g, length, &grooves, ctx)?;
+
+    let solver = resolve_solver(&raw.solver, ctx)?;
+    let out = &raw.output;
+    if out.samples_per_cycle < 8 {
+        return Err(ctx.err(
+            "output.samples_per_cycle",
+            format!("{} is too few (at least 8)", out.samples_per_cycle),
+        ));
+    }
+    let m = &raw.methods;
+    let closed_form_models = resolve_closed_form(raw.closed_form.as_ref(), m.closed_form, ctx)?;
+    if !(m.mobility || m.rigorous || !closed_form_models.is_empty()) {
+        return Err(ctx.err(
+            "methods",
+            "every method is switched off: nothing to compute",
+        ));
+    }
+    // The mass-conserving film needs oil from somewhere: a groove, or ends above p_cav (the
+    // solver would refuse it only after the other methods had run).
+    if m.rigorous
+        && solver.rigorous_film == RigorousFilm::Reynolds
+        && grooves.is_empty()
+        && ambient_pressure <= cavitation_pressure
+    {
+        return Err(ctx.err(
+            "methods.rigorous",
+            format!(
+                "the mass-conserving (JFO) film has no oil supply: no [[grooves]] and the ends at \
+                 p_amb = {ambient_pressure} Pa ≤ p_cav = {cavitation_pressure} Pa (add a feed \
+                 groove, raise lubricant.ambient_pressure_pa, or set rigorous = false)"
+            ),
+        ));
+    }
+
+    let mut case = Case {
+        name,
+        description: raw.description.clone().unwrap_or_default(),
+        path: Some(ctx.file.clone()),
+        text: ctx.text.to_string(),
+        input_files,
+        radius,
+        length,
+        radial_clearance,
+        grooves,
+        viscosity,
+        viscosity_model,
+        oil,
+        heat_balance,
+        bulk_modulus,
+        cavitation_pressure,
+        ambient_pressure,
+        starved_film_fraction,
+        cycle_deg,
+        crank_speed,
+        journal_speed,
+        bearing_speed,
+        load_angles_deg,
+        load_forces,
+        load_interpolation: interp,
+        feed_pressure,
+        n_theta: g.n_theta,
+        n_z: g.n_z,
+        solver,
+        output: OutputOptions {
+            samples_per_cycle: out.samples_per_cycle,
+            field_snapshots: out.field_snapshots,
+            plots: out.plots,
+        },
+        methods: Methods {
+            mobility: m.mobility,
+            rigorous: m.rigorous,
+            closed_form: !closed_form_models.is_empty(),
+        },
+        closed_form_models,
+        warnings: Vec::new(),
+    };
+    case.warnings = plausibility_warnings(&case, ctx);
+    Ok(case)
+}
+
+/// The bearing section: (R, L, c) in m.
+fn resolve_bearing(b: &BearingSection, ctx: &Ctx<'_>) -> Result<(f64, f64, f64), CaseError> {
     let radius = ctx.positive("bearing.radius_m", b.radius_m)?;
     let length = ctx.positive("bearing.length_m", b.length_m)?;
     let radial_clearance = ctx.positive("bearing.radial_clearance_m", b.radial_clearance_m)?;
@@ -948,6 +1062,26 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
                 "{radial_clearance} m is not small against the radius {radius} m (c/R must be < 0.1; \
                  is it in µm?)"
             ),
+        ));
+    }
+    Ok((radius, length, radial_clearance))
+}
+
+/// The feed grooves (SI, the solver's [`Groove`]) and the film fraction a groove holds when
+/// its feed is cut off.
+fn resolve_grooves(
+    raw: &CaseFile,
+    radius: f64,
+    length: f64,
+    ctx: &Ctx<'_>,
+) -> Result<(Vec<Groove>, f64), CaseError> {
+    // The film fraction a groove holds when its feed is cut off: the solver needs it in (0, 1)
+    // (φ = 1 would be a full film at p_cav, not a starved groove).
+    let starved_film_fraction = raw.lubricant.starved_film_fraction;
+    if !(starved_film_fraction > 0.0 && starved_film_fraction < 1.0) {
+        return Err(ctx.err(
+            "lubricant.starved_film_fraction",
+            format!("must lie in (0, 1), got {starved_film_fraction}"),
         ));
     }
     let mut grooves = Vec::new();
@@ -979,41 +1113,23 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         }
         grooves.push(Groove {
             center_angle: deg_to_rad(center),
-            axial_center: axial,
-            circumferential_length: circ,
+            center_z: axial,
+            angular_width: circ / radius,
             axial_width: width,
+            cutoff_film_fraction: starved_film_fraction,
         });
     }
+    Ok((grooves, starved_film_fraction))
+}
 
-    let l = &raw.lubricant;
-    let ResolvedViscosity {
-        viscosity,
-        model: viscosity_model,
-        oil,
-        heat_balance,
-    } = resolve_viscosity(l, ctx)?;
-    let bulk_modulus = ctx.positive("lubricant.bulk_modulus_pa", l.bulk_modulus_pa)?;
-    let cavitation_pressure =
-        ctx.finite("lubricant.cavitation_pressure_pa", l.cavitation_pressure_pa)?;
-    let ambient_pressure = ctx.finite("lubricant.ambient_pressure_pa", l.ambient_pressure_pa)?;
-    if cavitation_pressure > ambient_pressure {
-        return Err(ctx.err(
-            "lubricant.cavitation_pressure_pa",
-            format!("{cavitation_pressure} Pa is above the ambient pressure {ambient_pressure} Pa"),
-        ));
-    }
-    let starved_film_fraction = l.starved_film_fraction;
-    if !(starved_film_fraction > 0.0 && starved_film_fraction <= 1.0) {
-        return Err(ctx.err(
-            "lubricant.starved_film_fraction",
-            format!("must lie in (0, 1], got {starved_film_fraction}"),
-        ));
-    }
-
-    let o = &raw.operation;
-    let cycle_deg = ctx.positive("operation.cycle_deg", o.cycle_deg)?;
-    let crank_speed = rpm_to_rad_s(ctx.positive("operation.crank_speed_rpm", o.crank_speed_rpm)?);
-    let mut input_files = Vec::new();
+/// Journal and bearing speeds (rad/s): constants, or a speed table over the crank angle
+/// (recorded in `input_files`).
+fn resolve_speeds(
+    o: &OperationSection,
+    cycle_deg: f64,
+    input_files: &mut Vec<InputFile>,
+    ctx: &Ctx<'_>,
+) -> Result<(Schedule, Schedule), CaseError> {
     let journal_speed = if let Some(rel) = &o.speed_file {
         if o.journal_speed_rpm.is_some() || o.bearing_speed_rpm.is_some() {
             return Err(ctx.err(
@@ -1059,9 +1175,27 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             )?)),
         ),
     };
+    Ok((journal_speed, bearing_speed))
+}
 
-    // Load.
-    let ld = &raw.load;
+/// A resolved load table.
+struct LoadTable {
+    /// Crank angles (deg), increasing, spanning less than a cycle.
+    angles_deg: Vec<f64>,
+    /// Force on the journal (N, bearing frame) at each angle.
+    forces: Vec<[f64; 2]>,
+    interpolation: LoadInterpolation,
+}
+
+/// The load table (crank angles in deg, forces in N on the journal, bearing frame) and its
+/// interpolation, checked by building the solvers' [`TabulatedLoad`] once.
+fn resolve_load(
+    ld: &LoadSection,
+    cycle_deg: f64,
+    crank_speed: f64,
+    input_files: &mut Vec<InputFile>,
+    ctx: &Ctx<'_>,
+) -> Result<LoadTable, CaseError> {
     let interp = match ld.interpolation.as_str() {
         "linear" => LoadInterpolation::Linear,
         "catmull_rom" => LoadInterpolation::CatmullRom,
@@ -1184,12 +1318,26 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         interp,
     )
     .map_err(|e| ctx.err(load_key, e.to_string()))?;
+    Ok(LoadTable {
+        angles_deg: load_angles_deg,
+        forces: load_forces,
+        interpolation: interp,
+    })
+}
 
-    // Feed.
-    let f = &raw.feed;
+/// The groove feed pressure (gauge, Pa): a constant or a table over the crank angle; ambient
+/// when not given.
+fn resolve_feed(
+    f: &FeedSection,
+    grooves: &[Groove],
+    ambient_pressure: f64,
+    cycle_deg: f64,
+    input_files: &mut Vec<InputFile>,
+    ctx: &Ctx<'_>,
+) -> Result<Schedule, CaseError> {
     let feed_pressure = schedule(
         ctx,
-        &mut input_files,
+        input_files,
         "feed",
         f.pressure_pa.map(|v| ("pressure_pa", v)),
         f.file.as_deref(),
@@ -1228,9 +1376,16 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             "a feed pressure is given but the bearing has no [[grooves]] to feed",
         ));
     }
+    Ok(feed_pressure)
+}
 
-    // Grid.
-    let g = &raw.grid;
+/// The film grid: enough nodes, and every groove wide enough to hold some.
+fn check_grid(
+    g: &GridSection,
+    length: f64,
+    grooves: &[Groove],
+    ctx: &Ctx<'_>,
+) -> Result<(), CaseError> {
     if g.n_theta < 8 {
         return Err(ctx.err(
             "grid.n_theta",
@@ -1249,7 +1404,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
     let dtheta = std::f64::consts::TAU / g.n_theta as f64;
     let dz = length / (g.n_z - 1) as f64;
     for (i, gr) in grooves.iter().enumerate() {
-        let arc = gr.circumferential_length / radius;
+        let arc = gr.angular_width;
         if arc < dtheta {
             return Err(ctx.err(
                 "grid.n_theta",
@@ -1277,9 +1432,11 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             ));
         }
     }
+    Ok(())
+}
 
-    // Solver and output.
-    let s = &raw.solver;
+/// The solver settings.
+fn resolve_solver(s: &SolverSection, ctx: &Ctx<'_>) -> Result<SolverOptions, CaseError> {
     if s.time_steps_per_cycle < 8 {
         return Err(ctx.err(
             "solver.time_steps_per_cycle",
@@ -1337,92 +1494,17 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             ));
         }
     };
-    let out = &raw.output;
-    if out.samples_per_cycle < 8 {
-        return Err(ctx.err(
-            "output.samples_per_cycle",
-            format!("{} is too few (at least 8)", out.samples_per_cycle),
-        ));
-    }
-    let m = &raw.methods;
-    let closed_form_models = resolve_closed_form(raw.closed_form.as_ref(), m.closed_form, ctx)?;
-    if !(m.mobility || m.rigorous || !closed_form_models.is_empty()) {
-        return Err(ctx.err(
-            "methods",
-            "every method is switched off: nothing to compute",
-        ));
-    }
-    // The mass-conserving film needs oil from somewhere: a groove, or ends above p_cav (the
-    // solver would refuse it only after the other methods had run).
-    if m.rigorous
-        && rigorous_film == RigorousFilm::Reynolds
-        && grooves.is_empty()
-        && ambient_pressure <= cavitation_pressure
-    {
-        return Err(ctx.err(
-            "methods.rigorous",
-            format!(
-                "the mass-conserving (JFO) film has no oil supply: no [[grooves]] and the ends at \
-                 p_amb = {ambient_pressure} Pa ≤ p_cav = {cavitation_pressure} Pa (add a feed \
-                 groove, raise lubricant.ambient_pressure_pa, or set rigorous = false)"
-            ),
-        ));
-    }
-
-    let mut case = Case {
-        name,
-        description: raw.description.clone().unwrap_or_default(),
-        path: Some(ctx.file.clone()),
-        text: ctx.text.to_string(),
-        input_files,
-        radius,
-        length,
-        radial_clearance,
-        grooves,
-        viscosity,
-        viscosity_model,
-        oil,
-        heat_balance,
-        bulk_modulus,
-        cavitation_pressure,
-        ambient_pressure,
-        starved_film_fraction,
-        cycle_deg,
-        crank_speed,
-        journal_speed,
-        bearing_speed,
-        load_angles_deg,
-        load_forces,
-        load_interpolation: interp,
-        feed_pressure,
-        n_theta: g.n_theta,
-        n_z: g.n_z,
-        solver: SolverOptions {
-            time_steps_per_cycle: s.time_steps_per_cycle,
-            max_cycles: s.max_cycles,
-            periodicity_tolerance,
-            force_tolerance,
-            eccentricity_limit: s.eccentricity_limit,
-            time_scheme,
-            mobility_model,
-            initial_eccentricity: s.initial_eccentricity,
-            rigorous_film,
-        },
-        output: OutputOptions {
-            samples_per_cycle: out.samples_per_cycle,
-            field_snapshots: out.field_snapshots,
-            plots: out.plots,
-        },
-        methods: Methods {
-            mobility: m.mobility,
-            rigorous: m.rigorous,
-            closed_form: !closed_form_models.is_empty(),
-        },
-        closed_form_models,
-        warnings: Vec::new(),
-    };
-    case.warnings = plausibility_warnings(&case, ctx);
-    Ok(case)
+    Ok(SolverOptions {
+        time_steps_per_cycle: s.time_steps_per_cycle,
+        max_cycles: s.max_cycles,
+        periodicity_tolerance,
+        force_tolerance,
+        eccentricity_limit: s.eccentricity_limit,
+        time_scheme,
+        mobility_model,
+        initial_eccentricity: s.initial_eccentricity,
+        rigorous_film,
+    })
 }
 
 /// Ranges outside which a value is flagged as implausible (a unit or typing error, most

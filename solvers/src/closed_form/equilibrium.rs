@@ -48,6 +48,16 @@ pub struct EquilibriumSolution {
 
 /// The static equilibrium of `model` under the load `load` = W (N, the force the machine applies
 /// to the journal, bearing frame) at relative speed ω = ω_j − ω_b (rad/s).
+///
+/// ```
+/// use jbearing_solvers::closed_form::{ClosedFormModel, ClosedFormParams, static_equilibrium};
+///
+/// let params = ClosedFormParams { radius: 9.8e-3, length: 40e-3, radial_clearance: 0.2e-3, viscosity: 0.4 };
+/// let eq = static_equilibrium(ClosedFormModel::LongSommerfeld, &params, [0.0, -31.275], 52.36)?;
+/// // The full Sommerfeld film puts the journal 90° from the load.
+/// assert!((eq.attitude_angle.to_degrees() - 90.0).abs() < 1e-9);
+/// # Ok::<(), jbearing_solvers::closed_form::ClosedFormError>(())
+/// ```
 pub fn static_equilibrium(
     model: ClosedFormModel,
     params: &ClosedFormParams,

@@ -26,7 +26,7 @@
 
 use super::{ClosedFormParams, JournalMotion};
 use crate::mobility::short_bearing_squeeze_integral;
-use std::f64::consts::PI;
+use std::f64::consts::{PI, TAU};
 
 /// Pressure (Pa) at the papers' angle ψ (from the maximum film) and z, unclipped (full film).
 pub fn pressure(params: &ClosedFormParams, motion: &JournalMotion, psi: f64, z: f64) -> f64 {
@@ -85,12 +85,155 @@ pub fn moving_film_start(motion: &JournalMotion) -> f64 {
         .rem_euclid(std::f64::consts::TAU)
 }
 
+/// Ocvirk's steady short-bearing load (N) at eccentricity ratio ε for the relative speed
+/// ω = ω_j − ω_b (rad/s), the half (Gumbel) film of a journal at rest (\[Flores2009\] eqs. 8–9
+/// with ε̇ = 0):
+///
+/// ```text
+///   W = (μ U L³ / 4c²) ε √(16ε² + π²(1 − ε²)) / (1 − ε²)²,   U = R |ω|
+/// ```
+///
+/// ```
+/// use jbearing_solvers::closed_form::{ClosedFormParams, short};
+/// let p = ClosedFormParams { radius: 0.02, length: 0.01, radial_clearance: 40e-6, viscosity: 0.02 };
+/// // The load grows without bound towards the wall.
+/// assert!(short::ocvirk_steady_load(&p, 0.9, 300.0) > 10.0 * short::ocvirk_steady_load(&p, 0.3, 300.0));
+/// ```
+pub fn ocvirk_steady_load(
+    params: &ClosedFormParams,
+    eccentricity: f64,
+    relative_speed: f64,
+) -> f64 {
+    let e2 = eccentricity * eccentricity;
+    let u = params.radius * relative_speed.abs();
+    params.viscosity * u * params.length.powi(3) / (4.0 * params.radial_clearance.powi(2))
+        * eccentricity
+        * (16.0 * e2 + PI * PI * (1.0 - e2)).sqrt()
+        / ((1.0 - e2) * (1.0 - e2))
+}
+
+/// Ocvirk's steady attitude angle φ (rad) between the load line and the line of centres,
+/// tan φ = π √(1 − ε²) / (4ε) (the journal lies φ ahead of the load in the direction of U).
+pub fn ocvirk_attitude(eccentricity: f64) -> f64 {
+    (PI * (1.0 - eccentricity * eccentricity).sqrt()).atan2(4.0 * eccentricity)
+}
+
+/// Couette shear torque of a full 360° film, T_s = 2π μ R³ L ω / (c √(1 − ε²)) (N·m), ω = ω_j − ω_b
+/// (Petroff's torque with the eccentricity factor ∫₀^{2π} dθ/(1 − ε cos θ) = 2π/√(1 − ε²)).
+///
+/// The short-bearing films (mobility, closed forms) carry no film-fraction field, so the shear
+/// acts over the whole circumference (docs/conventions.md §5); the film's friction torques are
+/// T_journal = −T_s − ½ (e × F)_z and T_bearing = T_s − ½ (e × F)_z, and its Couette
+/// dissipation T_s ω.
+pub fn couette_shear_torque(
+    params: &ClosedFormParams,
+    eccentricity: f64,
+    relative_speed: f64,
+) -> f64 {
+    let r = params.radius;
+    TAU * params.viscosity * r * r * r * params.length * relative_speed
+        / (params.radial_clearance * (1.0 - eccentricity * eccentricity).sqrt())
+}
+
+/// Peak of the moving Gumbel film's mid-plane pressure (\[Flores2006\] eq. 18 at z = 0)
+///
+/// ```text
+///   p(θ) = (3 μ L² / 2c²) (u·n) / (1 − ε·n)³   where u·n > 0,   n = (cos θ, sin θ)
+/// ```
+///
+/// for the journal at `eps` (bearing frame) with the squeeze velocity u = v/c = ε̇ − ω̄ × ε (1/s):
+/// returns (p_max (Pa, ≥ 0), its angle θ (rad) in [0, 2π)); (0, 0) for u = 0.
+///
+/// With Sommerfeld's substitution (1 − ε cos θ' = s/(1 + ε cos γ), s = 1 − ε², θ' from ε) the
+/// function is the trigonometric polynomial (1 + ε cos γ)² [u'_x (cos γ + ε) + u'_y √s sin γ] / s³
+/// in γ, smooth even as ε → 1: 24 samples locate its global maximum (degree 3: at most three
+/// maxima, each O(1) wide in γ) and a safeguarded Newton iteration on its derivative polishes it.
+///
+/// ```
+/// use jbearing_solvers::closed_form::{ClosedFormParams, short};
+/// let p = ClosedFormParams { radius: 0.02, length: 0.01, radial_clearance: 40e-6, viscosity: 0.02 };
+/// // Pure squeeze towards +x at ε = 0: the peak is 3μL²|u|/(2c²), at θ = 0.
+/// let (p_max, at) = short::moving_film_peak_pressure(&p, [0.0, 0.0], [10.0, 0.0]);
+/// assert!((p_max - 1.5 * 0.02 * 1e-4 * 10.0 / 1.6e-9).abs() < 1e-9 * p_max);
+/// assert!(at.min(std::f64::consts::TAU - at) < 1e-9);
+/// ```
+pub fn moving_film_peak_pressure(
+    params: &ClosedFormParams,
+    eps: [f64; 2],
+    u: [f64; 2],
+) -> (f64, f64) {
+    let e = eps[0].hypot(eps[1]);
+    if u[0] == 0.0 && u[1] == 0.0 {
+        return (0.0, 0.0);
+    }
+    let (cx, sx) = if e > 0.0 {
+        (eps[0] / e, eps[1] / e)
+    } else {
+        (1.0, 0.0)
+    };
+    let a = u[0] * cx + u[1] * sx;
+    let b = -u[0] * sx + u[1] * cx;
+    let s = 1.0 - e * e;
+    let rs = s.sqrt();
+    // f(γ) = q² g with q = 1 + ε cos γ, g = a (cos γ + ε) + b √s sin γ; f' and f'' analytic.
+    let derivs = |x: f64| {
+        let (sn, cs) = x.sin_cos();
+        let q = 1.0 + e * cs;
+        let (q1, q2) = (-e * sn, -e * cs);
+        let g = a * (cs + e) + b * rs * sn;
+        let g1 = -a * sn + b * rs * cs;
+        let g2 = -a * cs - b * rs * sn;
+        let f = q * q * g;
+        let f1 = 2.0 * q * q1 * g + q * q * g1;
+        let f2 = 2.0 * (q1 * q1 + q * q2) * g + 4.0 * q * q1 * g1 + q * q * g2;
+        (f, f1, f2)
+    };
+    const N: usize = 24;
+    let dg = TAU / N as f64;
+    let (mut best_g, mut best_f) = (0.0, f64::NEG_INFINITY);
+    for k in 0..N {
+        let g = -PI + k as f64 * dg;
+        let v = derivs(g).0;
+        if v > best_f {
+            best_f = v;
+            best_g = g;
+        }
+    }
+    let (lo, hi) = (best_g - dg, best_g + dg);
+    let mut g = best_g;
+    for _ in 0..50 {
+        let (_, f1, f2) = derivs(g);
+        // Newton step when f'' < 0 (a maximum ahead); otherwise a gradient step of dg/4.
+        let step = if f2 < 0.0 {
+            -f1 / f2
+        } else {
+            0.25 * dg * f1.signum()
+        };
+        let next = (g + step).clamp(lo, hi);
+        let done = (next - g).abs() < 1e-13;
+        g = next;
+        if done {
+            break;
+        }
+    }
+    if derivs(g).0 < best_f {
+        g = best_g;
+    }
+    let fmax = derivs(g).0.max(best_f) / (s * s * s);
+    let c = params.radial_clearance;
+    let p = 1.5 * params.viscosity * params.length * params.length / (c * c) * fmax;
+    // Back from γ to θ' (inverse Sommerfeld map), then to the bearing frame.
+    let half = 0.5 * g;
+    let theta_p = 2.0 * ((1.0 - e).sqrt() * half.sin()).atan2((1.0 + e).sqrt() * half.cos());
+    let ang = (theta_p + sx.atan2(cx)).rem_euclid(TAU);
+    (p.max(0.0), ang)
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::test_support::simpson;
     use super::super::{ClosedFormModel, film_force, pressure as model_pressure};
     use super::*;
-    use std::f64::consts::TAU;
 
     fn params() -> ClosedFormParams {
         ClosedFormParams {

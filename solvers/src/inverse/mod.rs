@@ -54,19 +54,20 @@
 //!
 //! [`FilmModel`] is the one thing the inverse solver needs from a film: step from a state at t^n
 //! to a trial ε^{n+1} and return the film force and the outputs. Two implementations:
-//! - [`ShortBearingFilm`]: Ocvirk's short bearing with Gumbel's half film and a moving journal
-//!   (\[Flores2006\] eqs. 18–22; \[Flores2009\]), analytic, with the crate's [`TimeScheme`] (BDF2 default)
-//!   discretisation of the journal velocity.
+//! - [`ClosedFormFilm`]: any closed form of [`crate::closed_form`]; with
+//!   [`ClosedFormModel::ShortGumbelMovingFilm`](crate::closed_form::ClosedFormModel) it is Ocvirk's
+//!   short bearing with Gumbel's moving half film (\[Flores2006\] eqs. 18–22, 36–37), analytic,
+//!   with the crate's [`TimeScheme`] (BDF2 default) discretisation of the journal velocity.
 //! - [`ReynoldsFilm`]: the universal (mass-conserving) Reynolds solver [`crate::reynolds`].
 
 mod reynolds_film;
-mod short_bearing;
 mod solve;
 mod types;
 
 pub use reynolds_film::{ReynoldsFilm, film_response};
 
-pub use short_bearing::{ShortBearingFilm, ShortBearingParams, ShortBearingState, TimeScheme};
+pub use crate::closed_form::{ClosedFormFilm, ClosedFormState};
+pub use crate::time_scheme::{JournalMotion, TimeScheme};
 pub use solve::{InverseStart, solve_inverse, solve_inverse_from};
 pub use types::{
     CycleSummary, FieldSnapshot, InverseError, InverseInfo, InverseObserver, InverseParams,
@@ -74,19 +75,9 @@ pub use types::{
     NoObserver,
 };
 
+pub use crate::reynolds::OperatingConditions;
 use ndarray::Array2;
 use thiserror::Error;
-
-/// Operating conditions of one film step (the instant t^{n+1}).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct FilmConditions {
-    /// ω_j (rad/s, fixed frame).
-    pub journal_speed: f64,
-    /// ω_b (rad/s, fixed frame).
-    pub bearing_speed: f64,
-    /// p_feed of each groove (Pa, gauge).
-    pub feed_pressures: Vec<f64>,
-}
 
 /// Fields of one film solution on the film model's grid, indexed [i_θ, i_z].
 #[derive(Debug, Clone, PartialEq)]
@@ -142,9 +133,15 @@ pub enum FilmModelError {
     /// A non-finite value appeared in the film solution.
     #[error("non-finite {quantity} in the film solution")]
     NonFinite { quantity: &'static str },
-    /// The underlying film solver failed (its message).
-    #[error("film solver failed: {0}")]
-    Solver(String),
+    /// The time step is not a finite positive number.
+    #[error("time step dt = {dt} s is not finite and positive")]
+    InvalidTimeStep { dt: f64 },
+    /// A closed-form film failed (its parameters or the journal motion are out of range).
+    #[error("closed-form film: {0}")]
+    ClosedForm(#[from] crate::closed_form::ClosedFormError),
+    /// The Reynolds film solver failed.
+    #[error("Reynolds film: {0}")]
+    Reynolds(#[from] crate::reynolds::ReynoldsError),
 }
 
 /// A film that can be stepped from its state at t^n to a trial eccentricity at t^n + dt.
@@ -165,7 +162,7 @@ pub trait FilmModel {
         state: &Self::State,
         eccentricity_ratio: [f64; 2],
         dt: f64,
-        conditions: &FilmConditions,
+        conditions: &OperatingConditions,
     ) -> Result<(FilmResponse, Self::State), FilmModelError>;
 
     /// Largest change between two states' film fields (max |Δφ|) — the φ part of the

@@ -5,7 +5,7 @@
 //! outflow Crank–Nicolson needs and the level before that BDF2 needs). The time discretisation
 //! is the solver's ([`crate::reynolds::TimeScheme`]: BDF2 by default — second order and
 //! L-stable; backward Euler gives a whirling film artificial load capacity, see
-//! [`super::ShortBearingFilm`]'s docs, and Crank–Nicolson rings). The exact film-force Jacobian
+//! [`super::ClosedFormFilm`]'s docs, and Crank–Nicolson rings). The exact film-force Jacobian
 //! of the last step ([`FilmModel::force_jacobian`]) is
 //! [`ReynoldsSolver::film_force_jacobian`].
 //!
@@ -21,7 +21,7 @@
 //! Sweep iterations reported per step: the Krylov (ADI-preconditioned) iterations summed over
 //! the switch iterations of the accepted solve.
 
-use super::{FilmConditions, FilmFields, FilmModel, FilmModelError, FilmResponse};
+use super::{FilmFields, FilmModel, FilmModelError, FilmResponse};
 use crate::reynolds::{
     FilmSolution, FilmState, OperatingConditions, ReynoldsError, ReynoldsParams, ReynoldsSolver,
     StepInput,
@@ -100,7 +100,7 @@ impl FilmModel for ReynoldsFilm {
         state: &FilmState,
         eccentricity_ratio: [f64; 2],
         dt: f64,
-        conditions: &FilmConditions,
+        conditions: &OperatingConditions,
     ) -> Result<(FilmResponse, FilmState), FilmModelError> {
         let e = eccentricity_ratio[0].hypot(eccentricity_ratio[1]);
         if e.is_nan() || e >= 1.0 {
@@ -109,21 +109,14 @@ impl FilmModel for ReynoldsFilm {
         let input = StepInput {
             eccentricity_ratio,
             dt,
-            conditions: OperatingConditions {
-                journal_speed: conditions.journal_speed,
-                bearing_speed: conditions.bearing_speed,
-                feed_pressures: conditions.feed_pressures.clone(),
-            },
+            conditions: conditions.clone(),
         };
         let start = self
             .last
             .as_ref()
             .filter(|(from, _)| *from == state.eccentricity_ratio)
             .map(|(_, s)| s);
-        let (sol, next) = self
-            .solver
-            .solve_step_from(state, &input, start)
-            .map_err(|err| FilmModelError::Solver(err.to_string()))?;
+        let (sol, next) = self.solver.solve_step_from(state, &input, start)?;
         self.last = Some((state.eccentricity_ratio, next.clone()));
         Ok((film_response(sol, self.capture), next))
     }
@@ -146,7 +139,7 @@ impl FilmModel for ReynoldsFilm {
         Some(
             self.solver
                 .film_force_jacobian()
-                .map_err(|err| FilmModelError::Solver(err.to_string())),
+                .map_err(FilmModelError::from),
         )
     }
 }

@@ -11,7 +11,7 @@
 //! Cycle numbering in errors and progress: 0 is the run-in, 1, 2, … the load cycles.
 
 use super::types::*;
-use super::{FilmConditions, FilmFields, FilmModel, FilmModelError, FilmResponse};
+use super::{FilmFields, FilmModel, FilmModelError, FilmResponse, OperatingConditions};
 use crate::load::LoadHistory;
 use std::time::Instant;
 
@@ -90,6 +90,28 @@ fn smoothstep(x: f64) -> f64 {
 /// Returns the periodic solution (or the last cycle with [`InverseInfo::warning`] set when the
 /// cycle limit is reached), or an error: [`InverseError::Collapse`] when the film cannot carry
 /// the load, [`InverseError::NewtonFailed`] / [`InverseError::Film`] when a step fails.
+///
+/// ```
+/// use jbearing_solvers::prelude::*;
+/// use std::f64::consts::TAU;
+///
+/// // Under a constant load the orbit settles on Ocvirk's steady short-bearing position.
+/// let params = ClosedFormParams { radius: 0.02, length: 0.01, radial_clearance: 40e-6, viscosity: 0.02 };
+/// let mut film = ClosedFormFilm::new(ClosedFormModel::ShortGumbelMovingFilm, params, TimeScheme::Bdf2)?;
+/// let omega = 300.0;
+/// let history = OperatingHistory {
+///     load: ConstantLoad { load: [0.0, -1000.0], period: TAU / omega },
+///     journal_speed: omega,
+///     bearing_speed: 0.0,
+///     feed_pressures: vec![],
+/// };
+/// let settings = InverseParams { step_deg: 5.0, ..Default::default() };
+/// let solution = solve_inverse(&settings, &history, &mut film, &mut NoObserver)?;
+/// let e = solution.steps.last().unwrap().eccentricity;
+/// let ocvirk = jbearing_solvers::closed_form::short::ocvirk_steady_load(&params, e, omega);
+/// assert!(solution.info.periodic && (ocvirk - 1000.0).abs() < 1.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn solve_inverse<F, L, O>(
     params: &InverseParams,
     load: &L,
@@ -181,8 +203,8 @@ where
         },
         stats: Stats::default(),
     };
-    let conditions_at = |t: f64| -> Result<FilmConditions, InverseError> {
-        let c = FilmConditions {
+    let conditions_at = |t: f64| -> Result<OperatingConditions, InverseError> {
+        let c = OperatingConditions {
             journal_speed: load.journal_speed(t),
             bearing_speed: load.bearing_speed(t),
             feed_pressures: load.feed_pressures(t),
@@ -531,7 +553,7 @@ fn summarize(steps: &[InverseStep]) -> CycleSummary {
 }
 
 /// Load and film conditions at a time, for [`Stepper::advance`].
-type Drive<'a> = dyn Fn(f64) -> Result<([f64; 2], FilmConditions), InverseError> + 'a;
+type Drive<'a> = dyn Fn(f64) -> Result<([f64; 2], OperatingConditions), InverseError> + 'a;
 
 /// What every step of one inverse solve shares: the parameters, the reference load W_ref, the
 /// Jacobian carried across steps and the run statistics.
@@ -906,7 +928,7 @@ impl Stepper<'_> {
 /// where it is (for errors).
 struct Target<'c> {
     dt: f64,
-    cond: &'c FilmConditions,
+    cond: &'c OperatingConditions,
     w: [f64; 2],
     at: Where,
 }
@@ -992,7 +1014,7 @@ mod tests {
             s: &[f64; 2],
             e: [f64; 2],
             dt: f64,
-            _c: &FilmConditions,
+            _c: &OperatingConditions,
         ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
             let mut f = [0.0; 2];
             for i in 0..2 {
@@ -1165,7 +1187,7 @@ mod tests {
             s: &[f64; 2],
             e: [f64; 2],
             _dt: f64,
-            _c: &FilmConditions,
+            _c: &OperatingConditions,
         ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
             let d = [e[0] - s[0], e[1] - s[1]];
             let mut f = [-self.k * e[0], -self.k * e[1]];

@@ -166,7 +166,10 @@ pub struct InverseStep {
     pub eccentricity_ratio: [f64; 2],
     /// |ε|.
     pub eccentricity: f64,
-    /// Angle from the load direction to ε (rad, counter-clockwise positive, (−π, π]).
+    /// Attitude angle (rad, (−π, π]): from the load direction W to ε, counter-clockwise (the θ
+    /// sense) positive whatever the sense of rotation — the classical φ (positive in the
+    /// direction of U, [`crate::reynolds::FilmSolution::attitude_angle`]) for ω_j − ω_b > 0, its
+    /// negative for ω_j − ω_b < 0 (docs/conventions.md §1).
     pub attitude_angle: f64,
     /// h_min (m).
     pub min_film_thickness: f64,

@@ -8,7 +8,7 @@ use super::{
     MechanismFilmFields, MechanismInfo, MechanismParams, MechanismSolution, RodSliderJoint,
 };
 use crate::closed_form::{ClosedFormModel, ClosedFormParams, JournalMotion, film_force};
-use crate::inverse::{FilmConditions, FilmFields, FilmModel, ReynoldsFilm};
+use crate::inverse::{FilmFields, FilmModel, OperatingConditions, ReynoldsFilm};
 use crate::reynolds::FilmState;
 use differential_equations::prelude::{
     CrossingDirection, Event, EventConfig, IVP, ImplicitRungeKutta, ODE, Status,
@@ -1029,7 +1029,7 @@ fn evaluate_bdf2(
             let mut state_slot = None;
             let mut fields_slot = None;
             let res = model.eps_acceleration(t, eps, rate, |k| {
-                let cond = FilmConditions {
+                let cond = OperatingConditions {
                     journal_speed: k.rod_rate,
                     bearing_speed: 0.0,
                     feed_pressures: vec![0.0; feeds],

@@ -117,6 +117,16 @@ impl MobilityParams {
         0.5 * (self.omega_journal - self.omega_bearing)
     }
 
+    /// The bearing's geometry and lubricant as the closed forms take them.
+    pub fn closed_form(&self) -> crate::closed_form::ClosedFormParams {
+        crate::closed_form::ClosedFormParams {
+            radius: self.radius,
+            length: self.length,
+            radial_clearance: self.radial_clearance,
+            viscosity: self.viscosity,
+        }
+    }
+
     /// The load-to-squeeze-rate scale (c/R)²/(μ L D) in 1/(N·s): dε/dt = |W| · scale · M + ω̄ × ε.
     pub fn mobility_scale(&self) -> f64 {
         let cr = self.radial_clearance / self.radius;

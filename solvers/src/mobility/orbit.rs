@@ -136,7 +136,8 @@ pub struct OrbitInfo {
     /// Load on the journal (N, bearing frame).
     pub load: Vec<[f64; 2]>,
     /// Attitude angle (rad): from the load direction to ε, counter-clockwise (θ sense), in
-    /// (−π, π]. Where the load is zero the last non-zero load direction is used.
+    /// (−π, π], as [`crate::inverse::InverseStep::attitude_angle`] (the classical φ for
+    /// ω_j − ω_b > 0). Where the load is zero the last non-zero load direction is used.
     pub attitude_angle: Vec<f64>,
     /// h_min, p_max, side flow, power loss, rates at each sample.
     pub performance: Vec<PerformancePoint>,
@@ -194,6 +195,24 @@ impl<M: ?Sized, L: ?Sized> Event<f64, [f64; 2]> for OrbitOde<'_, M, L> {
 }
 
 /// Integrate the mobility orbit under the periodic `load` until it is periodic.
+///
+/// ```
+/// use jbearing_solvers::prelude::*;
+/// use std::f64::consts::TAU;
+///
+/// let bearing = MobilityParams {
+///     radius: 0.02, length: 0.01, radial_clearance: 40e-6, viscosity: 0.02,
+///     omega_journal: 300.0, omega_bearing: 0.0,
+/// };
+/// let model = ExactShortBearing { length_to_diameter: bearing.length_to_diameter() };
+/// let load = ConstantLoad { load: [0.0, -1000.0], period: TAU / 300.0 };
+/// let orbit = solve_orbit(&OrbitParams::new(bearing), &model, &load)?;
+/// // A constant load: the journal settles where the film carries it (Ocvirk's steady bearing).
+/// let e = orbit.summary.mean_eccentricity_ratio;
+/// let ocvirk = jbearing_solvers::closed_form::short::ocvirk_steady_load(&bearing.closed_form(), e, 300.0);
+/// assert!((ocvirk - 1000.0).abs() < 1e-3 * 1000.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn solve_orbit<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
     params: &OrbitParams,
     model: &M,

@@ -6,10 +6,8 @@
 //!
 //! * **Minimum film** h_min = c (1 − |ε|), in the direction of ε (\[Flores2006\] eq. 38).
 //! * **Peak pressure** in the mid-plane z = 0 of the short-bearing pressure (\[Flores2006\] eq. 18):
-//!   p(θ) = (3 μ L² / 2c²) (u·n) / (1 − ε·n)³, maximised over θ. With Sommerfeld's substitution
-//!   (1 − ε cos θ' = s/(1 + ε cos γ), s = 1 − ε²) the function is the trigonometric polynomial
-//!   (1 + ε cos γ)² [u'_x (cos γ + ε) + u'_y √s sin γ] / s³ in γ, smooth even at ε → 1; it is
-//!   sampled on 24 points and the best one refined by Newton's method on its derivative.
+//!   p(θ) = (3 μ L² / 2c²) (u·n) / (1 − ε·n)³, maximised over θ by
+//!   [`crate::closed_form::short::moving_film_peak_pressure`] (Sommerfeld's substitution, Newton).
 //! * **Side flow** out of both ends of the pressurised half film (the short-bearing flow
 //!   integral): the axial flow per unit circumference at z = ±L/2 is
 //!   −(h³/12μ) ∂p/∂z = (v·n) L/2, so Q = 2 · ∫_{v·n>0} (v·n) L/2 · R dθ = 2 R L |v| = 2 R L c |u|.
@@ -29,7 +27,7 @@
 //! velocity is that of the map and the flow and pressure remain the short-bearing estimates.
 
 use super::{MobilityModel, MobilityParams};
-use std::f64::consts::{PI, TAU};
+use crate::closed_form::short::couette_shear_torque;
 
 /// Performance of the mobility answer at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -75,8 +73,7 @@ pub fn performance_at<M: MobilityModel + ?Sized>(
     let umag = u[0].hypot(u[1]);
     let dw = params.omega_journal - params.omega_bearing;
     let r = params.radius;
-    let shear =
-        TAU * params.viscosity * r * r * r * params.length * dw * dw / (c * (1.0 - e * e).sqrt());
+    let shear = couette_shear_torque(&params.closed_form(), e, dw) * dw;
     let squeeze = c * (load[0] * u[0] + load[1] * u[1]);
     PerformancePoint {
         eccentricity_ratio: e,
@@ -114,80 +111,14 @@ pub(crate) fn squeeze_rate<M: MobilityModel + ?Sized>(
 
 /// Peak mid-plane pressure (Pa) and its angle θ (rad) of the short-bearing Gumbel film.
 fn peak_pressure(params: &MobilityParams, eps: [f64; 2], u: [f64; 2]) -> (f64, f64) {
-    let e = eps[0].hypot(eps[1]);
-    if u[0] == 0.0 && u[1] == 0.0 {
-        return (0.0, 0.0);
-    }
-    let (cx, sx) = if e > 0.0 {
-        (eps[0] / e, eps[1] / e)
-    } else {
-        (1.0, 0.0)
-    };
-    let a = u[0] * cx + u[1] * sx;
-    let b = -u[0] * sx + u[1] * cx;
-    let s = 1.0 - e * e;
-    let rs = s.sqrt();
-    // f(γ) = q² g with q = 1 + ε cos γ, g = a (cos γ + ε) + b √s sin γ; f' and f'' analytic.
-    let derivs = |x: f64| {
-        let (sn, cs) = x.sin_cos();
-        let q = 1.0 + e * cs;
-        let (q1, q2) = (-e * sn, -e * cs);
-        let g = a * (cs + e) + b * rs * sn;
-        let g1 = -a * sn + b * rs * cs;
-        let g2 = -a * cs - b * rs * sn;
-        let f = q * q * g;
-        let f1 = 2.0 * q * q1 * g + q * q * g1;
-        let f2 = 2.0 * (q1 * q1 + q * q2) * g + 4.0 * q * q1 * g1 + q * q * g2;
-        (f, f1, f2)
-    };
-    // f is a trigonometric polynomial of degree 3 (at most three maxima, each O(1) wide in γ):
-    // 24 samples locate the global one, safeguarded Newton on f' = 0 polishes it.
-    const N: usize = 24;
-    let dg = TAU / N as f64;
-    let (mut best_g, mut best_f) = (0.0, f64::NEG_INFINITY);
-    for k in 0..N {
-        let g = -PI + k as f64 * dg;
-        let v = derivs(g).0;
-        if v > best_f {
-            best_f = v;
-            best_g = g;
-        }
-    }
-    let (lo, hi) = (best_g - dg, best_g + dg);
-    let mut g = best_g;
-    for _ in 0..50 {
-        let (_, f1, f2) = derivs(g);
-        // Newton step when f'' < 0 (a maximum ahead); otherwise a gradient step of dg/4.
-        let step = if f2 < 0.0 {
-            -f1 / f2
-        } else {
-            0.25 * dg * f1.signum()
-        };
-        let next = (g + step).clamp(lo, hi);
-        let done = (next - g).abs() < 1e-13;
-        g = next;
-        if done {
-            break;
-        }
-    }
-    if derivs(g).0 < best_f {
-        g = best_g;
-    }
-    let f = |x: f64| derivs(x).0;
-    let fmax = f(g).max(best_f) / (s * s * s);
-    let c = params.radial_clearance;
-    let p = 1.5 * params.viscosity * params.length * params.length / (c * c) * fmax;
-    // Back from γ to θ' (inverse Sommerfeld map), then to the bearing frame.
-    let half = 0.5 * g;
-    let theta_p = 2.0 * ((1.0 - e).sqrt() * half.sin()).atan2((1.0 + e).sqrt() * half.cos());
-    let ang = (theta_p + sx.atan2(cx)).rem_euclid(TAU);
-    (p.max(0.0), ang)
+    crate::closed_form::short::moving_film_peak_pressure(&params.closed_form(), eps, u)
 }
 
 #[cfg(test)]
 mod tests {
     use super::super::ExactShortBearing;
     use super::*;
+    use std::f64::consts::TAU;
 
     fn params() -> MobilityParams {
         MobilityParams {

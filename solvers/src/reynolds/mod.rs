@@ -269,12 +269,14 @@ impl ReynoldsParams {
     }
 }
 
-/// Speeds and feed of one instant.
-#[derive(Debug, Clone, PartialEq)]
+/// Speeds and feed of one instant: what every film (Reynolds, closed forms, the inverse and
+/// mechanism film models) needs besides the journal position. One type for the whole crate
+/// (re-exported as `inverse::OperatingConditions`).
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct OperatingConditions {
-    /// Journal angular speed ω_j, rad/s.
+    /// Journal angular speed ω_j, rad/s (fixed frame, counter-clockwise positive).
     pub journal_speed: f64,
-    /// Bearing (sleeve) angular speed ω_b, rad/s.
+    /// Bearing (sleeve) angular speed ω_b, rad/s (fixed frame, counter-clockwise positive).
     pub bearing_speed: f64,
     /// Feed pressure per groove (gauge), Pa, in the order of `ReynoldsParams::grooves`.
     pub feed_pressures: Vec<f64>,
@@ -311,7 +313,9 @@ pub struct FilmSolution {
     pub film_force: [f64; 2],
     /// |F|, N.
     pub load_capacity: f64,
-    /// Angle from the load W = −F to the eccentricity, positive in the direction of U, rad.
+    /// The classical attitude angle φ (rad, (−π, π]): from the load W = −F to the eccentricity,
+    /// positive in the direction of the surface motion U (Raimondi & Boyd's φ, Butenschön's β;
+    /// docs/conventions.md §1).
     pub attitude_angle: f64,
     pub min_film_thickness: f64,
     pub min_film_location: [f64; 2],

@@ -33,8 +33,8 @@
 
 use anyhow::{Context, Result};
 use jbearing_solvers::inverse::{
-    FilmConditions, FilmModel, FilmModelError, FilmResponse, InverseParams, InverseSolution,
-    JacobianMethod, NoObserver, ReynoldsFilm, solve_inverse,
+    FilmModel, FilmModelError, FilmResponse, InverseParams, InverseSolution, JacobianMethod,
+    NoObserver, OperatingConditions, ReynoldsFilm, solve_inverse,
 };
 use jbearing_solvers::load::{FnLoad, OperatingHistory};
 use jbearing_solvers::reynolds::{FilmState, LinearSolver, TimeScheme};
@@ -74,7 +74,7 @@ impl FilmModel for TimedFilm {
         state: &FilmState,
         eccentricity_ratio: [f64; 2],
         dt: f64,
-        conditions: &FilmConditions,
+        conditions: &OperatingConditions,
     ) -> Result<(FilmResponse, FilmState), FilmModelError> {
         let t0 = thread_cpu_seconds();
         let out = self.inner.step(state, eccentricity_ratio, dt, conditions);
