@@ -21,7 +21,7 @@ fn run_into(case: impl AsRef<Path>, out: &Path, extra: &[&str]) -> Output {
 }
 
 /// One bad case per kind the application must reject with a precise message.
-const KINDS: [&str; 28] = [
+const KINDS: [&str; 30] = [
     "syntax_error",
     "unknown_key",
     "missing_key",
@@ -50,6 +50,8 @@ const KINDS: [&str; 28] = [
     "mechanism_reynolds_radau5",
     "mechanism_ideal_with_film",
     "mechanism_rod_too_short",
+    "mechanism_fields_closed_form",
+    "mechanism_fields_too_many",
 ];
 
 #[test]

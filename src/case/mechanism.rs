@@ -153,6 +153,9 @@ pub struct IntegratorSection {
     pub relative_tolerance: Option<f64>,
     pub absolute_tolerance: Option<f64>,
     pub steps_per_turn: Option<usize>,
+    /// BDF2 local error tolerance (in ε): error control with steps of at most one turn /
+    /// `steps_per_turn`; absent: fixed steps.
+    pub error_tolerance: Option<f64>,
     pub newton_tolerance: Option<f64>,
     pub max_newton_iterations: Option<usize>,
 }
@@ -566,6 +569,7 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
                     }
                     for (key, bad) in [
                         ("steps_per_turn", given(|s| s.steps_per_turn.is_some())),
+                        ("error_tolerance", given(|s| s.error_tolerance.is_some())),
                         ("newton_tolerance", given(|s| s.newton_tolerance.is_some())),
                         (
                             "max_newton_iterations",
@@ -617,6 +621,7 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
                     }
                     let Integrator::Bdf2 {
                         steps_per_turn,
+                        error_tolerance,
                         newton_tolerance,
                         max_newton_iterations,
                     } = Integrator::bdf2_default()
@@ -644,8 +649,13 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
                     if iterations == 0 {
                         return Err(ctx.err(&ik("max_newton_iterations"), "must be at least 1"));
                     }
+                    let error_tolerance = match s.and_then(|s| s.error_tolerance) {
+                        Some(v) => Some(ctx.positive(&ik("error_tolerance"), v)?),
+                        None => error_tolerance,
+                    };
                     Integrator::Bdf2 {
                         steps_per_turn: steps,
+                        error_tolerance,
                         newton_tolerance: match s.and_then(|s| s.newton_tolerance) {
                             Some(v) => ctx.positive(&ik("newton_tolerance"), v)?,
                             None => newton_tolerance,

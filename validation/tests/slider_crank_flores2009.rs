@@ -249,6 +249,7 @@ fn integrators_agree_and_bdf2_converges_at_second_order() {
     for steps in [360, 720] {
         p.integrator = Integrator::Bdf2 {
             steps_per_turn: steps,
+            error_tolerance: None,
             newton_tolerance: 1e-10,
             max_newton_iterations: 30,
         };
@@ -625,6 +626,12 @@ fn closed_form_films_against_the_reynolds_film() {
             // carries, so the Reynolds film lets the journal closer to the wall than either.
             let re = h_of["reynolds 60×15"];
             for full in ["long_sommerfeld", "short_sommerfeld"] {
+                // Where the full film itself goes into dry contact (c = 0.5 mm, 40 cP, long
+                // Sommerfeld) the penetration is the contact law's (Hertz stiffness, impact
+                // speed), not the film's: no film comparison there.
+                if h_of[full] < 1e-6 {
+                    continue;
+                }
                 assert!(
                     re < h_of[full],
                     "c {c} μ {mu}: Reynolds {re} vs {full} {}",
@@ -860,4 +867,250 @@ fn cartesian_baumgarte_formulation_gives_the_same_motion() {
     assert!(de_max < 1e-6 * c, "{de_max}");
     assert!(dm_max < 1e-4 * peak_m, "{dm_max}");
     assert!(drift < 1e-12, "{drift}");
+}
+
+/// Work and dissipation over turn `k` (0-based) of a run sampled at `n` per turn: the driving
+/// work ∫ M θ̇ dt, the work the film takes from the mechanism −∫ F·ė dt split into its radial
+/// (squeeze) and tangential parts, the power ½ (e × F) φ̇₃ of the film's pressure torque on the
+/// journal (left out of the model, as in [Flores2009] eqs. 33–34), and the Petroff shear
+/// torque's ∫ 2πμR³L φ̇₃² / (c √(1 − ε²)) dt (likewise left out). Trapezoidal rule.
+fn turn_energies(
+    s: &MechanismSolution,
+    joint: &LubricatedJointParams,
+    k: usize,
+    n: usize,
+) -> [f64; 5] {
+    let w = SliderCrankParams::flores2009().crank_speed;
+    let c = joint.radial_clearance();
+    let (r, l, mu) = (joint.journal_radius, joint.length, joint.viscosity);
+    let rates = |j: usize| {
+        let f = s.loads[j].rod_slider;
+        let (e, ed) = (s.eccentricity[j], s.eccentricity_rate[j]);
+        let m = norm(e).max(1e-300);
+        let (fr, edr) = (
+            (f[0] * e[0] + f[1] * e[1]) / m,
+            (ed[0] * e[0] + ed[1] * e[1]) / m,
+        );
+        let fe = f[0] * ed[0] + f[1] * ed[1];
+        let omega = s.bodies[j][1].angular_velocity;
+        let eps = norm(e) / c;
+        [
+            s.loads[j].crank_moment * w,
+            -fr * edr,
+            -(fe - fr * edr),
+            0.5 * (e[0] * f[1] - e[1] * f[0]) * omega,
+            std::f64::consts::TAU * mu * r.powi(3) * l * omega * omega
+                / (c * (1.0 - eps * eps).sqrt()),
+        ]
+    };
+    let mut out = [0.0; 5];
+    for i in k * n + 1..=(k + 1) * n {
+        let dt = s.time[i] - s.time[i - 1];
+        let (a, b) = (rates(i), rates(i - 1));
+        for q in 0..5 {
+            out[q] += 0.5 * (a[q] + b[q]) * dt;
+        }
+    }
+    out
+}
+
+/// Issue 16, gap 1. [Flores2009] states (§9, not in the text on Fig. 13, which only finds
+/// forces and moment "of the same order" as with ideal joints) that the lubricant "absorbs some
+/// of the energy produced by the slider ... which results in lower reaction moments when
+/// compared to ideal joints"; it gives no number. At constant crank speed the driving work per
+/// turn of a periodic motion is the energy the joint dissipates (d(T + V) = 0 over a period):
+/// zero with ideal joints, the film's dissipation D > 0 with a passive film. The mean driving
+/// moment therefore *rises* by D / 2π; a film cannot lower it. The film's pressure torque on
+/// the journal ½ e × F and its Couette (Petroff) shear torque, both left out by the paper's
+/// eqs. 33–34 and by our model, would add their dissipation on top. The peak moment can only
+/// move by what the clearance changes in the inertia forces (e ≤ c = 0.2 mm against a 0.1 m
+/// stroke): of the order of 0.1 %.
+#[test]
+fn a_lubricated_joint_raises_the_mean_driving_moment() {
+    let joint = LubricatedJointParams::flores2009();
+    let mut p = MechanismParams::flores2009();
+    p.turns = 6; // periodic to 1e-4 c from the fifth turn (turn_to_turn_map_contracts...)
+    p.samples_per_turn = 3600;
+    let s = solve_mechanism(&p).unwrap();
+    let id = ideal(1, 3600);
+    let n = p.samples_per_turn;
+    let [work, squeeze, tangential, torque_p, petroff] = turn_energies(&s, &joint, 5, n);
+    let film = squeeze + tangential;
+    let w = p.mechanism.crank_speed;
+    let mean_m = work / std::f64::consts::TAU;
+    let peak = |s: &MechanismSolution, k: usize| {
+        s.loads[k * n..=(k + 1) * n]
+            .iter()
+            .map(|l| l.crank_moment.abs())
+            .fold(0.0, f64::max)
+    };
+    let ideal_work: f64 = (1..=n)
+        .map(|i| {
+            0.5 * (id.loads[i].crank_moment + id.loads[i - 1].crank_moment)
+                * w
+                * (id.time[i] - id.time[i - 1])
+        })
+        .sum();
+    let (pk, pk_id) = (peak(&s, 5), peak(&id, 0));
+    println!(
+        "sixth turn: drive work {work:.4} J (ideal {ideal_work:.1e} J), film dissipation {film:.4} J \
+         (squeeze {squeeze:.4}, tangential {tangential:.4}); left out: pressure torque {torque_p:.4} J, \
+         Petroff torque {petroff:.4} J; mean moment {mean_m:.4} N m; peak moment {pk:.3} vs ideal \
+         {pk_id:.3} N m ({:+.3} %)",
+        100.0 * (pk / pk_id - 1.0)
+    );
+    // The drive work is the film's dissipation: the motion is periodic (ΔT = 0 to 1e-4 c), the
+    // trapezoid at 0.1° integrates both to ~1e-5 of ∫|M θ̇| dt ≈ 60 J (the energy-balance
+    // test): 2e-3 J allowed on 0.76 J.
+    assert!((work - film).abs() < 2e-3, "{work} vs {film}");
+    // Both parts of the film's pressure work are dissipative here, and so is the pressure
+    // work with the pressure torque (a perfect square for the closed forms: the wedge term's
+    // power is ∝ (φ̇₃ − 2γ̇)² ≥ 0 once ½ e × F φ̇₃ is counted).
+    assert!(squeeze > 0.0 && tangential > 0.0, "{squeeze} {tangential}");
+    assert!(film + torque_p > 0.0, "{film} {torque_p}");
+    // Ideal joints: no dissipation, no net drive work (round-off).
+    assert!(ideal_work.abs() < 1e-6, "{ideal_work}");
+    // Lubricated: the mean moment is higher by D/2π, 0.1 N m — not lower. The Petroff torque
+    // the model leaves out would add ~0.02 N m more (its dissipation, 0.15 J per turn).
+    assert!(mean_m > 0.1 && mean_m < 0.15, "{mean_m}");
+    assert!(petroff > 0.05 && petroff < 0.3, "{petroff}");
+    // The peak moment: of the same order as the ideal one (the text on Fig. 13), within 0.1 %:
+    // the film transmits the slider's inertia force, changed only by m ë with |e| ≤ c.
+    assert!((pk / pk_id - 1.0).abs() < 1e-3, "{pk} vs {pk_id}");
+}
+
+/// Largest turn-to-turn change of the orbit, max over turn k of |e(t) − e(t − T)| / c, for
+/// k = 1 … turns − 1.
+fn turn_changes(s: &MechanismSolution, n: usize, c: f64, turns: usize) -> Vec<f64> {
+    (1..turns)
+        .map(|k| {
+            (0..=n)
+                .map(|i| {
+                    let (a, b) = (s.eccentricity[i + k * n], s.eccentricity[i + (k - 1) * n]);
+                    norm([a[0] - b[0], a[1] - b[1]]) / c
+                })
+                .fold(0.0, f64::max)
+        })
+        .collect()
+}
+
+/// Issue 16, gap 2: the orbit is not periodic after two turns (turn 2 − turn 1 ≈ 0.26 c with
+/// the Pinkus–Sternlicht film, ≈ 0.5 c with the Reynolds film) although the forces repeat: the
+/// start (journal centred and at rest while the slider already moves) leaves a transient in
+/// the journal's *mean position* in the clearance, a slow mode of a joint whose load has a
+/// nearly zero mean, and the turn-to-turn map contracts it geometrically — one mode, the same
+/// factor every turn (not a period-2 orbit: the changes would not shrink; not a drift along a
+/// neutral direction: the factor would tend to 1). Measured factor per turn: ≈ 0.15 with the
+/// Pinkus–Sternlicht film, ≈ 0.57 with the Reynolds film, whose orbit therefore needs ~12
+/// turns to repeat to 1e-3 c. [Flores2009]'s "the first and the second crank rotation show the
+/// same results" holds for the forces (within 1 %, `flores_main_case_as_the_paper_states`),
+/// not for the orbit from a centred start.
+#[test]
+fn turn_to_turn_map_contracts_to_a_periodic_orbit() {
+    let c = 0.2e-3;
+    let n = 360;
+    let s = run(c, 0.4, 7);
+    let d = turn_changes(&s, n, c, 7);
+    let rho: Vec<f64> = d.windows(2).map(|w| w[1] / w[0]).collect();
+    println!("Pinkus–Sternlicht: turn-to-turn change / c {d:.3?}, factor per turn {rho:.3?}");
+    // Turns 2 … 6: each factor well below 1 (measured 0.11–0.16), and the orbit periodic to
+    // 1e-3 c after five turns.
+    for r in &rho[..4] {
+        assert!(*r < 0.3, "{rho:?}");
+    }
+    assert!(d[4] < 1e-3, "{d:?}");
+
+    // The Reynolds film (a coarse 40 × 11 grid: the slow mode is the film's, not the grid's;
+    // 12 turns).
+    let mut joint = LubricatedJointParams::with_clearance(c, 0.4);
+    let mut rp = joint.reynolds_params();
+    rp.grid = GridParams {
+        n_theta: 40,
+        n_z: 11,
+    };
+    joint.film = JointFilm::Reynolds(Box::new(rp));
+    let mut p = MechanismParams::new(
+        SliderCrankParams::flores2009(),
+        RodSliderJoint::Lubricated(joint),
+    );
+    p.turns = 12;
+    p.field_snapshots = 0;
+    let s = solve_mechanism(&p).unwrap();
+    let d = turn_changes(&s, n, c, 12);
+    let rho: Vec<f64> = d.windows(2).map(|w| w[1] / w[0]).collect();
+    let mean = |k: usize| {
+        let m = s.eccentricity[k * n..(k + 1) * n]
+            .iter()
+            .fold([0.0, 0.0], |a, e| [a[0] + e[0], a[1] + e[1]]);
+        [m[0] / (n as f64 * c), m[1] / (n as f64 * c)]
+    };
+    println!(
+        "Reynolds 40 × 11: turn-to-turn change / c {d:.3?}, factor per turn {rho:.3?}; mean ε of turns 2, 6, 12: {:.4?} {:.4?} {:.4?}",
+        mean(1),
+        mean(5),
+        mean(11)
+    );
+    // One slow mode: from turn 4 on the factor settles in 0.4 … 0.75 (measured 0.47–0.60),
+    // every change shrinks, and after 12 turns the orbit repeats to 1e-3 c.
+    for r in &rho[3..] {
+        assert!(*r > 0.4 && *r < 0.75, "{rho:?}");
+    }
+    assert!(d[0] > 0.2, "the transient is there: {d:?}");
+    assert!(d[10] < 1e-3, "{d:?}");
+}
+
+/// Issue 16, gap 3: BDF2 under error control. Fixed steps put the impact peaks of the c =
+/// 0.5 mm, 40 cP run where the step grid happens to fall (peak contact force 9779, 11447,
+/// 11211, 10613 N at 360 … 2880 steps per turn: no convergence in sight); with the local error
+/// estimate the peak converges as the tolerance falls, towards the independent Radau5 run
+/// (order 5, rtol 1e-8).
+#[test]
+fn bdf2_error_control_makes_the_impact_peak_converge() {
+    let c = 0.5e-3;
+    let mut p = MechanismParams::new(
+        SliderCrankParams::flores2009(),
+        RodSliderJoint::Lubricated(LubricatedJointParams::with_clearance(c, 0.04)),
+    );
+    let radau = solve_mechanism(&p).unwrap().info.max_joint_force;
+    let run_tol = |p: &mut MechanismParams, tol: f64| {
+        p.integrator = Integrator::Bdf2 {
+            steps_per_turn: 360,
+            error_tolerance: Some(tol),
+            newton_tolerance: 1e-9,
+            max_newton_iterations: 30,
+        };
+        let s = solve_mechanism(p).unwrap_or_else(|e| panic!("tol {tol}: {e}"));
+        assert!(!s.contact_events.is_empty(), "tol {tol}: impacts expected");
+        (s.info.max_joint_force, s.info.steps, s.info.rejected_steps)
+    };
+    let (reference, ref_steps, _) = run_tol(&mut p, 1e-7);
+    println!("Radau5 peak {radau:.1} N; BDF2 tol 1e-7 peak {reference:.1} N ({ref_steps} steps)");
+    let mut diffs = Vec::new();
+    for tol in [1e-3, 1e-4, 1e-5, 1e-6] {
+        let (peak, steps, rejected) = run_tol(&mut p, tol);
+        println!(
+            "tol {tol:e}: peak contact force {peak:.1} N, − reference {:+.1} N, {steps} steps, {rejected} rejected",
+            peak - reference
+        );
+        diffs.push((peak - reference).abs());
+    }
+    // The tight run agrees with Radau5 to 0.05 % (two methods, two error controls).
+    assert!(
+        (reference / radau - 1.0).abs() < 5e-4,
+        "{reference} vs {radau}"
+    );
+    // The peak's error shrinks with the tolerance: BDF2's local error is O(h³), so h ∝ tol^{1/3}
+    // and the global error ∝ h² ∝ tol^{2/3}: a factor 10^{2/3} ≈ 4.6 per decade (measured
+    // 4.2–5.5); at least 3 required.
+    for w in diffs.windows(2) {
+        assert!(w[1] < w[0] / 3.0, "{diffs:?}");
+    }
+    // The recommended tolerance (`Integrator::bdf2_controlled`) puts the peak within 0.5 % of
+    // the tight run (measured 0.33 %).
+    let default_tol = jbearing_solvers::mechanism::DEFAULT_BDF2_ERROR_TOLERANCE;
+    let (peak, ..) = run_tol(&mut p, default_tol);
+    assert!(
+        (peak / reference - 1.0).abs() < 5e-3,
+        "default: {peak} vs {reference}"
+    );
 }

@@ -59,11 +59,17 @@ pub fn solve_mechanism(params: &MechanismParams) -> Result<MechanismSolution, Me
                 (
                     Integrator::Bdf2 {
                         steps_per_turn,
+                        error_tolerance,
                         newton_tolerance,
                         max_newton_iterations,
                     },
                     film,
                 ) => {
+                    if let Some(tol) = error_tolerance
+                        && !(tol.is_finite() && tol > 0.0)
+                    {
+                        return Err(bad("error_tolerance", tol));
+                    }
                     if steps_per_turn == 0 || steps_per_turn % params.samples_per_turn != 0 {
                         return Err(bad(
                             "steps_per_turn (a multiple of samples_per_turn)",
@@ -100,8 +106,11 @@ pub fn solve_mechanism(params: &MechanismParams) -> Result<MechanismSolution, Me
                         &model,
                         &mut film,
                         steps_per_turn,
-                        newton_tolerance,
-                        max_newton_iterations,
+                        error_tolerance,
+                        NewtonSettings {
+                            tol: newton_tolerance,
+                            max_iter: max_newton_iterations,
+                        },
                     )
                 }
             }
@@ -627,8 +636,8 @@ fn solve_bdf2(
     model: &JointModel<'_>,
     film: &mut Film,
     steps_per_turn: usize,
-    tol: f64,
-    max_iter: usize,
+    error_tolerance: Option<f64>,
+    newton: NewtonSettings,
 ) -> Result<MechanismSolution, MechanismError> {
     let mech = &params.mechanism;
     let c = model.c;
@@ -637,7 +646,14 @@ fn solve_bdf2(
     let n_steps = params.turns * steps_per_turn;
     let stride = steps_per_turn / params.samples_per_turn;
     let floor = model.joint.contact.min_impact_speed;
-    let newton = NewtonSettings { tol, max_iter };
+    // Error control: the step the controller proposes next (the first step, backward Euler
+    // from rest, is short: the start transient has time constants of microseconds).
+    let mut control = error_tolerance.map(|tol| StepControl {
+        tol,
+        rate_scale: mech.crank_speed.abs(),
+        next: 1e-3 * dt,
+        min: 1e-9 * dt,
+    });
     let mut out = MechanismSolution::default();
     let mut weights = Vec::new();
     let mut info = MechanismInfo::default();
@@ -694,16 +710,28 @@ fn solve_bdf2(
         if let (true, Film::Reynolds(b)) = (snapshot, &mut *film) {
             b.0.set_capture_fields(true);
         }
-        let mut trial = advance(
-            model,
-            film,
-            &mut hist,
-            t1,
-            0,
-            newton,
-            &mut info,
-            &mut events,
-        )?;
+        let mut trial = match control.as_mut() {
+            None => advance(
+                model,
+                film,
+                &mut hist,
+                t1,
+                0,
+                newton,
+                &mut info,
+                &mut events,
+            )?,
+            Some(ctl) => advance_controlled(
+                model,
+                film,
+                &mut hist,
+                t1,
+                ctl,
+                newton,
+                &mut info,
+                &mut events,
+            )?,
+        };
         if let (true, Film::Reynolds(b)) = (snapshot, &mut *film) {
             b.0.set_capture_fields(false);
             if let Some(ff) = film_fields.as_mut() {
@@ -771,6 +799,123 @@ fn advance(
             advance(model, film, hist, t1, depth + 1, newton, info, events)
         }
         Err(e) => Err(e),
+    }
+}
+
+/// The BDF2 step-size controller (module docs, "Integration").
+#[derive(Debug, Clone, Copy)]
+struct StepControl {
+    /// Local error tolerance (in ε).
+    tol: f64,
+    /// ε̇ is measured in ε per radian of crank: ε̇ / |ω|.
+    rate_scale: f64,
+    /// Proposed length of the next step (s).
+    next: f64,
+    /// Shortest step allowed (s).
+    min: f64,
+}
+
+/// Local error estimate of a BDF2 step of length h (Milne's device) from the history at t^n to
+/// the corrected (ε, ε̇)^{n+1}: the predictor is the quadratic through y^{n−1}, y^n with slope
+/// ẏ^n (y = ε and y = ε̇, ẏ = ε̇ and ε̈), whose error is h²(h + h_p) y‴/6, against BDF2's
+/// −(2/9) h³ y‴ (constant steps); so LTE ≈ (2/9) / (1/3 + 2/9) · |y_c − y_p| = 0.4 |y_c − y_p|
+/// at h = h_p (the constant-step factor is kept for unequal steps). The norm is the larger of
+/// the ε and the ε̇ / |ω| error. None for the first step (no y^{n−1}).
+fn local_error(
+    hist: &History,
+    h: f64,
+    eps: [f64; 2],
+    rate: [f64; 2],
+    rate_scale: f64,
+) -> Option<f64> {
+    let hp = hist.last_dt?;
+    let predict = |y: [f64; 2], y_prev: [f64; 2], slope: [f64; 2], i: usize| {
+        let q = (y_prev[i] - y[i] + hp * slope[i]) / (hp * hp);
+        y[i] + h * slope[i] + h * h * q
+    };
+    let mut err: f64 = 0.0;
+    for i in 0..2 {
+        let ep = predict(hist.eps[0], hist.eps[1], hist.rate[0], i);
+        let rp = predict(hist.rate[0], hist.rate[1], hist.acc, i);
+        err = err
+            .max((eps[i] - ep).abs())
+            .max((rate[i] - rp).abs() / rate_scale);
+    }
+    Some(0.4 * err)
+}
+
+/// Advance the history to t1 (a grid point) by as many BDF2 steps as the error control asks
+/// for: a step is accepted when its local error estimate is within the tolerance, and the next
+/// step is h · 0.9 (tol/err)^{1/3} (between 0.2 h and 2 h; third power: the estimate is
+/// O(h³)); a rejected step or a failed Newton is retried shorter. Returns the trial at t1.
+#[allow(clippy::too_many_arguments)]
+fn advance_controlled(
+    model: &JointModel<'_>,
+    film: &mut Film,
+    hist: &mut History,
+    t1: f64,
+    ctl: &mut StepControl,
+    newton: NewtonSettings,
+    info: &mut MechanismInfo,
+    events: &mut Vec<ContactEvent>,
+) -> Result<Trial, MechanismError> {
+    loop {
+        let remaining = t1 - hist.t;
+        // End on t1 when the step reaches it (or nearly: no sliver steps), else at most half
+        // the rest when the step covers more than half of it (two even steps, not a long one
+        // and a sliver).
+        let (h, last) = if ctl.next >= remaining * (1.0 - 1e-9) {
+            (remaining, true)
+        } else if ctl.next > 0.5 * remaining {
+            (0.5 * remaining, false)
+        } else {
+            (ctl.next, false)
+        };
+        let ta = if last { t1 } else { hist.t + h };
+        // The Newton error δε enters ε̇ as a₀ δε / h: on short steps it must be smaller, or it
+        // alone would exceed the tolerance on ε̇ / |ω| (1 % of it, floored at round-off).
+        let step_newton = NewtonSettings {
+            tol: newton
+                .tol
+                .min((0.01 * ctl.tol * (h * ctl.rate_scale).min(1.0)).max(1e-14)),
+            ..newton
+        };
+        match bdf2_step(model, film, hist, ta, step_newton, info) {
+            Ok((trial, eps)) => {
+                let err = local_error(hist, h, eps, trial.rate, ctl.rate_scale).unwrap_or(0.0);
+                let ratio = if err > 0.0 {
+                    0.9 * (ctl.tol / err).cbrt()
+                } else {
+                    2.0
+                };
+                if err <= ctl.tol || h <= ctl.min {
+                    if err > ctl.tol {
+                        return Err(MechanismError::Integration {
+                            time: ta,
+                            crank_angle_deg: model.crank_deg(ta),
+                            reason: format!(
+                                "BDF2 step size underflow: local error {err:.3e} > tolerance {:.3e} at a step of {h:.3e} s",
+                                ctl.tol
+                            ),
+                        });
+                    }
+                    commit(model, film, hist, ta, eps, &trial, events);
+                    info.steps += 1;
+                    ctl.next = (h * ratio.clamp(0.2, 2.0)).max(ctl.min);
+                    if last {
+                        return Ok(trial);
+                    }
+                } else {
+                    info.rejected_steps += 1;
+                    ctl.next = (h * ratio.clamp(0.2, 0.9)).max(ctl.min);
+                }
+            }
+            Err(MechanismError::NewtonFailed { .. }) if h > ctl.min => {
+                info.rejected_steps += 1;
+                ctl.next = (0.25 * h).max(ctl.min);
+            }
+            Err(e) => return Err(e),
+        }
     }
 }
 
@@ -1222,6 +1367,7 @@ mod tests {
         let mut p = MechanismParams::flores2009();
         p.integrator = Integrator::Bdf2 {
             steps_per_turn: 500,
+            error_tolerance: None,
             newton_tolerance: 1e-9,
             max_newton_iterations: 10,
         };

@@ -3,7 +3,8 @@
 //! turns from the start, as `solve_mechanism` runs it by default:
 //!
 //! - every closed-form film with the adaptive Radau5 integrator (target ≤ 50 ms per run);
-//! - the same with fixed-step BDF2 at 360 steps per turn (the Reynolds film's integrator);
+//! - the same with fixed-step BDF2 at 360 steps per turn (the Reynolds film's integrator), and
+//!   with BDF2 under error control (`Integrator::bdf2_controlled`);
 //! - the mass-conserving Reynolds film at its default grid (120 × 31) with BDF2 at 360 steps per
 //!   turn (target ≤ 10 s per run).
 //!
@@ -116,6 +117,9 @@ fn main() -> Result<()> {
         p.integrator = Integrator::bdf2_default();
         let (t, s) = time_runs(&p, cf_repeat)?;
         row(model.name(), "BDF2 360/turn", t, &s);
+        p.integrator = Integrator::bdf2_controlled();
+        let (t, s) = time_runs(&p, cf_repeat)?;
+        row(model.name(), "BDF2 error control 1e-4", t, &s);
     }
     if !quick {
         let mut joint = LubricatedJointParams::flores2009();
