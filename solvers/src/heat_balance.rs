@@ -251,6 +251,22 @@ impl HeatBalanceParams {
 /// of dr/dT (for instance from a cheaper model's iteration) for the first secant step.
 ///
 /// Returns the result of the last solve (at T_eff) and the iteration record.
+///
+/// ```
+/// use jbearing_solvers::heat_balance::{HeatBalanceParams, HeatFlows, solve_heat_balance};
+///
+/// // A film whose power loss falls as it warms (μ halves every 20 K); fixed side leakage.
+/// let params = HeatBalanceParams { supply_temperature: 40.0, ..Default::default() };
+/// let film = |t: f64| -> Result<(f64, HeatFlows), std::convert::Infallible> {
+///     let power = 400.0 * 0.5f64.powf((t - 40.0) / 20.0);
+///     Ok((power, HeatFlows { power_loss: power, side_leakage: 2e-5, recirculated_flow: 0.0 }))
+/// };
+/// let (power, info) = solve_heat_balance(&params, 50.0, None, film)?;
+/// // At the answer the oil carries the heat: P = ρc_p Q (T_out − T_in), T_eff = (T_in + T_out)/2.
+/// let t_out = 40.0 + power / (params.volumetric_heat_capacity * 2e-5);
+/// assert!((info.effective_temperature - 0.5 * (40.0 + t_out)).abs() <= params.tolerance);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn solve_heat_balance<R, E, S>(
     params: &HeatBalanceParams,
     first_guess: f64,

@@ -86,6 +86,22 @@ pub struct TabulatedLoad {
 impl TabulatedLoad {
     /// A table of force vectors (N, bearing frame) at increasing crank angles (deg) spanning less
     /// than one cycle; `crank_speed` Ω in rad/s (> 0).
+    ///
+    /// ```
+    /// use jbearing_solvers::load::{LoadInterpolation, PeriodicLoad, TabulatedLoad};
+    ///
+    /// // Four points over a 360° cycle at 1500 rpm, wrapped periodically.
+    /// let speed = 1500.0 * std::f64::consts::TAU / 60.0;
+    /// let table = TabulatedLoad::new(
+    ///     vec![0.0, 90.0, 180.0, 270.0],
+    ///     vec![[0.0, -1000.0], [500.0, 0.0], [0.0, 1000.0], [-500.0, 0.0]],
+    ///     360.0, speed, LoadInterpolation::Linear,
+    /// )?;
+    /// assert_eq!(table.load_at_crank_angle(45.0), [250.0, -500.0]);
+    /// assert_eq!(table.load_at_crank_angle(315.0), [-250.0, -500.0]); // between 270° and 360° = 0°
+    /// assert!((table.period() - 60.0 / 1500.0).abs() < 1e-15);
+    /// # Ok::<(), jbearing_solvers::load::LoadTableError>(())
+    /// ```
     pub fn new(
         angles_deg: Vec<f64>,
         forces: Vec<[f64; 2]>,

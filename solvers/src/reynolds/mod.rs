@@ -677,6 +677,27 @@ impl ReynoldsSolver {
     /// One implicit time step from `state` (ε and φ at t_n) to `input.eccentricity_ratio` at
     /// t_n + dt. The squeeze enters through h at both levels (docs/conventions.md §2). The iterations
     /// start from `state`'s φ and g.
+    ///
+    /// ```
+    /// use jbearing_solvers::prelude::*;
+    /// use jbearing_solvers::reynolds::StepInput;
+    ///
+    /// // A journal moving straight towards the wall with no rotation: the squeeze film pushes
+    /// // back, against the motion.
+    /// let mut params = ReynoldsParams::plain(0.02, 0.02, 20e-6, 0.02);
+    /// params.grid = GridParams { n_theta: 48, n_z: 11 };
+    /// params.ambient_pressure = 1e5; // the ends feed the film
+    /// let mut film = ReynoldsSolver::new(params)?;
+    /// let state = film.initial_state([0.0, -0.3]);
+    /// let input = StepInput {
+    ///     eccentricity_ratio: [0.0, -0.31],
+    ///     dt: 1e-4,
+    ///     conditions: OperatingConditions::default(),
+    /// };
+    /// let (solution, _next) = film.solve_step(&state, &input)?;
+    /// assert!(solution.film_force[1] > 0.0);
+    /// # Ok::<(), ReynoldsError>(())
+    /// ```
     pub fn solve_step(
         &mut self,
         state: &FilmState,
@@ -962,6 +983,22 @@ impl ReynoldsSolver {
     }
 
     /// The steady film (no squeeze) at ε, from a cold start.
+    ///
+    /// ```
+    /// use jbearing_solvers::prelude::*;
+    ///
+    /// let mut params = ReynoldsParams::plain(0.02, 0.02, 20e-6, 0.02);
+    /// params.grid = GridParams { n_theta: 48, n_z: 11 };
+    /// params.supply = SupplyModel::AxialLineAtMaxGap;
+    /// let mut film = ReynoldsSolver::new(params)?;
+    /// let rotation = OperatingConditions { journal_speed: 300.0, ..Default::default() };
+    /// let solution = film.solve_steady([0.0, -0.6], &rotation)?;
+    /// // Counter-clockwise rotation: the load line lies behind the journal, 0 < φ < 90°, and the
+    /// // film cavitates in the diverging gap.
+    /// let phi = solution.attitude_angle.to_degrees();
+    /// assert!(phi > 0.0 && phi < 90.0 && solution.cavitated_fraction > 0.2);
+    /// # Ok::<(), ReynoldsError>(())
+    /// ```
     pub fn solve_steady(
         &mut self,
         eccentricity_ratio: [f64; 2],
@@ -1010,6 +1047,22 @@ impl ReynoldsSolver {
 
     /// The steady eccentricity that carries the constant load `load` (the force the machine
     /// applies to the journal, N), by Newton on (ε_x, ε_y).
+    ///
+    /// ```
+    /// use jbearing_solvers::prelude::*;
+    ///
+    /// let mut params = ReynoldsParams::plain(0.02, 0.02, 20e-6, 0.02);
+    /// params.grid = GridParams { n_theta: 48, n_z: 11 };
+    /// params.supply = SupplyModel::AxialLineAtMaxGap;
+    /// let mut film = ReynoldsSolver::new(params)?;
+    /// let rotation = OperatingConditions { journal_speed: 300.0, ..Default::default() };
+    /// let (light, _) = film.solve_steady_load([0.0, -500.0], &rotation)?;
+    /// let (heavy, info) = film.solve_steady_load([0.0, -5000.0], &rotation)?;
+    /// // More load, thinner film; the film carries the load to the tolerance.
+    /// assert!(heavy.min_film_thickness < light.min_film_thickness);
+    /// assert!(info.force_residual < 1e-6 * 5000.0);
+    /// # Ok::<(), ReynoldsError>(())
+    /// ```
     pub fn solve_steady_load(
         &mut self,
         load: [f64; 2],
