@@ -239,16 +239,22 @@ pub fn main_with(cli: Cli) -> ExitCode {
                     }
                     let method_failed = crate::batch::has_failed_method(&o.report);
                     let closed_form = o.report.closed_form.clone();
-                    print!(
-                        "{}",
-                        summary_table(&[crate::batch::BatchEntry {
-                            path: a.case.clone(),
-                            name: job.name.clone(),
-                            result: Ok(crate::batch::JobOutcome::Bearing(o)),
-                        }])
-                    );
+                    let elastic = o.report.elastic.as_ref().map(|e| e.format_summary());
+                    // A case that asks only for the deformable bearing has no method rows.
+                    let methods_ran = !o.report.methods.is_empty();
+                    let table = summary_table(&[crate::batch::BatchEntry {
+                        path: a.case.clone(),
+                        name: job.name.clone(),
+                        result: Ok(crate::batch::JobOutcome::Bearing(o)),
+                    }]);
+                    if methods_ran || elastic.is_none() {
+                        print!("{table}");
+                    }
                     if let Some(t) = &closed_form {
                         print!("{}", crate::closed_form_report::format_table(t));
+                    }
+                    if let Some(e) = &elastic {
+                        print!("{e}");
                     }
                     if method_failed {
                         eprintln!("a requested method failed (the FAILED row above)");

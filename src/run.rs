@@ -19,19 +19,22 @@ use jbearing_solvers::mobility::{
 };
 
 use jbearing_solvers::closed_form::{ClosedFormFilm, ClosedFormModel, ClosedFormParams};
+use jbearing_solvers::elastic::ElasticParams;
 use jbearing_solvers::inverse::{
     InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, InverseStart,
     InverseWarning, ReynoldsFilm, solve_inverse_from,
 };
 use jbearing_solvers::load::LoadHistory;
-use jbearing_solvers::reynolds::{GridParams, ReynoldsParams};
+use jbearing_solvers::reynolds::{
+    GridParams, OperatingConditions, ReynoldsParams, ReynoldsSolver, SupplyModel,
+};
 use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
 use ndarray::Array3;
 
 use crate::budget::{self, BudgetError, Limits};
 use crate::case::{Case, CaseError, CaseWarning, MobilityModelChoice, RigorousFilm};
 use crate::output::{
-    CaseReport, Field, FieldSnapshots, Method, MethodResult, OutputError, Parameter,
+    CaseReport, ElasticReport, Field, FieldSnapshots, Method, MethodResult, OutputError, Parameter,
     ParameterValue, Reduction, ReportWarning, RunInfo, Series, SummaryRow, names, standard_writers,
 };
 
@@ -109,6 +112,15 @@ pub enum RunError {
         /// The solver's error, with its numbers.
         #[source]
         source: RigorousError,
+    },
+    /// The deformable (elastic) bearing's coupled solve failed.
+    #[error("case '{case}': elastic bearing: {source}")]
+    Elastic {
+        /// Case name.
+        case: String,
+        /// The solver's error, with its numbers.
+        #[source]
+        source: jbearing_solvers::elastic::ElasticError,
     },
     /// The heat balance of a method did not close (or a solve inside it failed).
     #[error("case '{case}': {method} method: {}", heat::error_chain(source.as_ref()))]
@@ -281,6 +293,8 @@ pub fn run_rigorous_from(
 
 /// Key of the report parameter that says why the rigorous method is missing (it failed).
 pub const RIGOROUS_STATUS: &str = Method::Rigorous.failure_key();
+/// Key of the report parameter that says why the elastic bearing is missing (it failed).
+pub const ELASTIC_STATUS: &str = "elastic_status";
 /// Key of the report parameter that says why the mobility method is missing (it failed).
 pub const MOBILITY_STATUS: &str = Method::Mobility.failure_key();
 
@@ -305,6 +319,261 @@ pub fn reynolds_params(case: &Case) -> ReynoldsParams {
             case.viscosity,
         )
     }
+}
+
+/// The deformable steady problem of a case with `[elastic]`: what [`run_elastic`] solves, and
+/// what the JB1 deformable validation test (`validation/tests/elastic_seed003.rs`) loads, so
+/// that the application and the validation run one configuration.
+#[derive(Debug, Clone)]
+pub struct ElasticProblem {
+    /// The film: the case's Reynolds (JFO) parameters, with the axial supply line at h_max
+    /// when the case has no groove ([`SupplyModel::AxialLineAtMaxGap`], \[Benasciutti2012\]'s
+    /// supply), else the grooves at the case's feed pressure.
+    pub film: ReynoldsParams,
+    /// Shaft and housing.
+    pub elastic: ElasticParams,
+    /// The steady load on the journal, N (bearing frame).
+    pub load: [f64; 2],
+    /// Speeds and feed pressures (the case's constants).
+    pub conditions: OperatingConditions,
+}
+
+/// The [`ElasticProblem`] of `case`, None without `[elastic]`. The case check has made sure an
+/// elastic case is steady (one load point, constant speeds and feed).
+pub fn elastic_problem(case: &Case) -> Option<ElasticProblem> {
+    let elastic = case.elastic.clone()?;
+    let mut film = reynolds_params(case);
+    if case.grooves.is_empty() {
+        film.supply = SupplyModel::AxialLineAtMaxGap;
+    }
+    let at0 = |s: &crate::case::Schedule| s.at(case.load_angles_deg[0], case.cycle_deg);
+    Some(ElasticProblem {
+        film,
+        elastic,
+        load: case.load_forces[0],
+        conditions: OperatingConditions {
+            journal_speed: at0(&case.journal_speed),
+            bearing_speed: at0(&case.bearing_speed),
+            feed_pressures: vec![at0(&case.feed_pressure); case.grooves.len()],
+        },
+    })
+}
+
+/// The deformable bearing of a case with `[elastic]` (None without): the coupled film–structure
+/// steady-load solve (`jbearing_solvers::elastic::solve_steady_load`), beside it the rigid film
+/// under the same load, and the report the writers store (`crate::output::elastic`).
+pub fn run_elastic(case: &Case) -> Option<Result<ElasticReport, RunError>> {
+    let problem = elastic_problem(case)?;
+    let fail = |source| RunError::Elastic {
+        case: case.name.clone(),
+        source,
+    };
+    Some(solve_elastic(case, &problem).map_err(fail))
+}
+
+fn solve_elastic(
+    case: &Case,
+    problem: &ElasticProblem,
+) -> Result<ElasticReport, jbearing_solvers::elastic::ElasticError> {
+    use jbearing_solvers::elastic::{ElasticBearing, solve_steady_load};
+    let t0 = Instant::now();
+    let mut solver = ReynoldsSolver::new(problem.film.clone())?;
+    let (rigid, rigid_info) = solver.solve_steady_load(problem.load, &problem.conditions)?;
+    let bearing = ElasticBearing::new(case.radius, problem.elastic.clone())?;
+    let (sol, info) = solve_steady_load(&mut solver, &bearing, problem.load, &problem.conditions)?;
+    let c = case.radial_clearance;
+    let eps = info.steady.eccentricity_ratio;
+    let angle = bearing.surface_angles();
+    let film_thickness: Vec<f64> = angle
+        .iter()
+        .zip(&sol.gap_change)
+        .map(|(th, g)| c * (1.0 - eps[0] * th.cos() - eps[1] * th.sin()) + g)
+        .collect();
+    let body = |name: &str, b: &jbearing_solvers::elastic::ElasticBody, u: &[[f64; 2]]| {
+        let stress = b.stresses(u);
+        crate::output::BodyField {
+            name: name.into(),
+            points: b.mesh().nodes.clone(),
+            cells: b.mesh().elements.clone(),
+            displacement: u.to_vec(),
+            stress: stress.iter().map(|s| [s.xx, s.yy, s.xy, s.zz]).collect(),
+        }
+    };
+    let shaft = body("shaft", &bearing.shaft, &sol.shaft_displacement);
+    let housing = body("housing", &bearing.housing, &sol.housing_displacement);
+    let mut series = vec![
+        Series::new(
+            "surface_pressure",
+            "film pressure averaged over the length (the load on the structure)",
+            "Pa",
+            sol.surface_pressure.clone(),
+        ),
+        Series::new(
+            "gap_change",
+            "gap change g = housing minus shaft radial displacement",
+            "m",
+            sol.gap_change.clone(),
+        ),
+        Series::new(
+            "film_thickness",
+            "deformed film thickness h = c - e cos + g",
+            "m",
+            film_thickness,
+        ),
+        Series::new(
+            "housing_radial_displacement",
+            "radial displacement of the bore (outward positive)",
+            "m",
+            sol.housing_radial.clone(),
+        ),
+        Series::new(
+            "shaft_radial_displacement",
+            "radial displacement of the journal surface (outward positive)",
+            "m",
+            sol.shaft_radial.clone(),
+        ),
+    ];
+    for (prefix, where_, b) in [
+        ("bore", "housing bore", &housing),
+        ("journal", "journal surface", &shaft),
+    ] {
+        let surface = if prefix == "bore" {
+            &bearing.housing.mesh().surface
+        } else {
+            &bearing.shaft.mesh().surface
+        };
+        let polar: Vec<[f64; 2]> = surface.iter().map(|&k| b.polar_stress(k)).collect();
+        series.push(Series::new(
+            &format!("{prefix}_radial_stress"),
+            &format!("radial stress on the {where_}"),
+            "Pa",
+            polar.iter().map(|s| s[0]).collect(),
+        ));
+        series.push(Series::new(
+            &format!("{prefix}_hoop_stress"),
+            &format!("hoop stress on the {where_}"),
+            "Pa",
+            polar.iter().map(|s| s[1]).collect(),
+        ));
+        series.push(Series::new(
+            &format!("{prefix}_axial_stress"),
+            &format!("axial stress (plane strain, nu (s_r + s_t)) on the {where_}"),
+            "Pa",
+            surface.iter().map(|&k| b.stress[k][3]).collect(),
+        ));
+        series.push(Series::new(
+            &format!("{prefix}_von_mises_stress"),
+            &format!("von Mises stress on the {where_}"),
+            "Pa",
+            surface.iter().map(|&k| b.von_mises(k)).collect(),
+        ));
+    }
+    let f = &sol.film;
+    let e_rigid = rigid_info.eccentricity_ratio;
+    let scalars = vec![
+        Parameter::number(
+            "eccentricity_ratio_x",
+            eps[0],
+            "1",
+            "journal eccentricity e_x / c",
+        ),
+        Parameter::number(
+            "eccentricity_ratio_y",
+            eps[1],
+            "1",
+            "journal eccentricity e_y / c",
+        ),
+        Parameter::number(
+            "eccentricity",
+            c * eps[0].hypot(eps[1]),
+            "m",
+            "journal eccentricity |e| (may exceed c: the bore deforms)",
+        ),
+        Parameter::number(
+            "attitude_angle",
+            f.attitude_angle,
+            "rad",
+            "attitude angle, from the load line to the line of centres",
+        ),
+        Parameter::number("max_pressure", f.max_pressure, "Pa", "peak film pressure"),
+        Parameter::number(
+            "min_film_thickness",
+            f.min_film_thickness,
+            "m",
+            "minimum film thickness of the deformed film",
+        ),
+        Parameter::number(
+            "film_force_x",
+            f.film_force[0],
+            "N",
+            "film force on the journal, x",
+        ),
+        Parameter::number(
+            "film_force_y",
+            f.film_force[1],
+            "N",
+            "film force on the journal, y",
+        ),
+        Parameter::number("power_loss", f.power_loss, "W", "friction power loss"),
+        Parameter::number(
+            "rigid_eccentricity",
+            c * e_rigid[0].hypot(e_rigid[1]),
+            "m",
+            "journal eccentricity of the rigid film under the same load",
+        ),
+        Parameter::number(
+            "rigid_max_pressure",
+            rigid.max_pressure,
+            "Pa",
+            "peak film pressure of the rigid film",
+        ),
+        Parameter::number(
+            "rigid_min_film_thickness",
+            rigid.min_film_thickness,
+            "m",
+            "minimum film thickness of the rigid film",
+        ),
+        Parameter::integer(
+            "coupling_iterations",
+            info.iterations as i64,
+            "outer (deformation) iterations of the coupled solve",
+        ),
+        Parameter::number(
+            "gap_residual",
+            info.gap_residual,
+            "m",
+            "max |C p - g| at convergence",
+        ),
+        Parameter::integer(
+            "film_solves",
+            info.film_solves as i64,
+            "film solves over all steady-load Newton solves",
+        ),
+        Parameter::number(
+            "wall_time",
+            t0.elapsed().as_secs_f64(),
+            "s",
+            "wall time of the rigid and the coupled solve (meshing, factorization, compliance included)",
+        ),
+    ];
+    Ok(ElasticReport {
+        description: format!(
+            "deformable bearing: plane-strain finite elements of shaft (hole {} m, held radially) \
+             and square housing (half-width {} m, edges fixed), {} nodes around; film gap \
+             h = c - e cos + g, g = C p (compliance), Aitken-relaxed fixed point on g around the \
+             steady-load Newton (jbearing_solvers::elastic)",
+            problem.elastic.hole_radius,
+            match problem.elastic.housing {
+                jbearing_solvers::elastic::HousingShape::Square { half_width } => half_width,
+                jbearing_solvers::elastic::HousingShape::Circle { radius } => radius,
+            },
+            problem.elastic.n_theta
+        ),
+        scalars,
+        angle,
+        series,
+        bodies: vec![shaft, housing],
+    })
 }
 
 /// The inverse solver's settings from the case's `[solver]` and `[output]` tables.
@@ -1314,7 +1583,23 @@ fn solve_case_with(
             }
         }
     }
-    if methods.is_empty() {
+    // The deformable bearing beside the methods; a case that asks only for it fails with it.
+    let elastic = match run_elastic(case) {
+        None => None,
+        Some(Ok(r)) => Some(r),
+        Some(Err(err)) if methods.is_empty() && failures.is_empty() => return Err(err),
+        Some(Err(err)) => {
+            tracing::error!(case = %case.name, "elastic bearing failed: {err}");
+            parameters.push(Parameter::text(
+                ELASTIC_STATUS,
+                &format!("failed: {err}"),
+                "why the elastic group is absent from this file",
+            ));
+            failures.push(err);
+            None
+        }
+    };
+    if methods.is_empty() && elastic.is_none() {
         return Err(match failures.len() {
             0 => RunError::NoMethod {
                 case: case.name.clone(),
@@ -1356,6 +1641,7 @@ fn solve_case_with(
         methods,
         summary,
         closed_form,
+        elastic,
         warnings: Vec::new(),
     })
 }

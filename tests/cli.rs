@@ -21,7 +21,7 @@ fn run_into(case: impl AsRef<Path>, out: &Path, extra: &[&str]) -> Output {
 }
 
 /// One bad case per kind the application must reject with a precise message.
-const KINDS: [&str; 30] = [
+const KINDS: [&str; 38] = [
     "syntax_error",
     "unknown_key",
     "missing_key",
@@ -52,6 +52,14 @@ const KINDS: [&str; 30] = [
     "mechanism_rod_too_short",
     "mechanism_fields_closed_form",
     "mechanism_fields_too_many",
+    "elastic_negative_modulus",
+    "elastic_poisson_out_of_range",
+    "elastic_hole_too_big",
+    "elastic_housing_inside_bore",
+    "elastic_zero_layers",
+    "elastic_zero_tolerance",
+    "elastic_not_steady",
+    "elastic_unknown_key",
 ];
 
 #[test]
@@ -90,6 +98,7 @@ fn each_bad_case_gives_its_exact_message_with_file_key_and_line() {
             "operation.",
             "methods.",
             "mechanism.",
+            "elastic",
             "version",
             "radius_m",
         ]
@@ -123,9 +132,10 @@ fn shipped_cases_pass_check() {
         "cases/compressor_rod.toml",
         "cases/flores2006_mobility.toml",
         "cases/benasciutti_jb1_steady.toml",
+        "cases/benasciutti_jb1_elastic.toml",
     ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
-    assert_eq!(text(&out.stdout).lines().count(), 4);
+    assert_eq!(text(&out.stdout).lines().count(), 5);
 }
 
 fn assert_case_files(dir: &Path, name: &str) {

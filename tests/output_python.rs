@@ -287,3 +287,61 @@ fn merged_sweep_selects_by_swept_key_and_plots() {
     let bytes = std::fs::read(&png).unwrap();
     assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"));
 }
+
+/// The deformable bearing's file (`cases/benasciutti_jb1_elastic.toml` run by the application)
+/// opens in pyvista as one unstructured grid of both bodies — the shaft annulus and the square
+/// housing, whose quads tile the section exactly: the bore's 240-gon is both bodies' edge and
+/// cancels, the housing's corners are nodes (240 is a multiple of 8), so the total area is the
+/// square's (2H)² less the hole's inscribed 240-gon, (n/2) r_h² sin(2π/n), to rounding (a
+/// missing or doubled cell would change it by at least the smallest cell, 7e-6 m²) — and the
+/// `elastic` group opens in xarray along its `angle` dimension.
+#[test]
+fn elastic_file_reads_back_in_pyvista_and_xarray() {
+    let python = python_env();
+    let dir = tempfile::tempdir().unwrap();
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/benasciutti_jb1_elastic.toml");
+    let out = jbearing::run::run_case_file(
+        &case,
+        dir.path(),
+        &jbearing::budget::Limits::default(),
+        &jbearing::run::Quiet,
+    )
+    .unwrap();
+    let path = dir.path().join("benasciutti_jb1_elastic.h5");
+    let bodies = &out.report.elastic.as_ref().unwrap().bodies;
+    let n_points: usize = bodies.iter().map(|b| b.points.len()).sum();
+    let script = "import sys, numpy as np, pyvista as pv, xarray as xr\n\
+        m = pv.read(sys.argv[1], force_ext='.vtkhdf')\n\
+        print('grid', type(m).__name__, m.n_points)\n\
+        area = m.compute_cell_sizes(length=False, volume=False).cell_data['Area']\n\
+        print('area', repr(float(area.sum())), 'min', repr(float(area.min())))\n\
+        print('bodies', sorted(set(int(b) for b in m.cell_data['body'])))\n\
+        print('point data', sorted(m.point_data.keys()))\n\
+        print('displacement finite', bool(np.isfinite(m.point_data['displacement']).all()))\n\
+        d = xr.open_dataset(sys.argv[1], engine='h5netcdf', group='elastic')\n\
+        print('bore dims', d.bore_von_mises_stress.dims, d.bore_von_mises_stress.attrs['units'])\n";
+    let printed = run(
+        Command::new(&python)
+            .env("HDF5_USE_FILE_LOCKING", "FALSE")
+            .args(["-c", script])
+            .arg(&path),
+        "pyvista elastic",
+    );
+    assert!(
+        printed.contains(&format!("grid UnstructuredGrid {n_points}")),
+        "{printed}"
+    );
+    let area: f64 = printed
+        .lines()
+        .find_map(|l| l.strip_prefix("area "))
+        .and_then(|l| l.split_whitespace().next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no area in {printed}"));
+    let (h, r_h, n) = (0.5, 0.1, 240.0);
+    let exact = 4.0 * h * h - 0.5 * n * r_h * r_h * (std::f64::consts::TAU / n).sin();
+    assert!((area - exact).abs() < 1e-9, "area {area} vs {exact}");
+    assert!(printed.contains("bodies [0, 1]"), "{printed}");
+    assert!(printed.contains("'displacement'") && printed.contains("'von_mises_stress'"));
+    assert!(printed.contains("displacement finite True"), "{printed}");
+    assert!(printed.contains("bore dims ('angle',) Pa"), "{printed}");
+}

@@ -60,6 +60,7 @@ pressure_pa = 2.068e5
 use std::path::{Path, PathBuf};
 
 use jbearing_solvers::closed_form::{ClosedFormError, ClosedFormModel};
+use jbearing_solvers::elastic::{ElasticParams, HousingShape, Material, square_layers};
 use jbearing_solvers::heat_balance::HeatBalanceParams;
 use jbearing_solvers::mobility::{LoadInterpolation, TabulatedLoad};
 use jbearing_solvers::time_scheme::TimeScheme;
@@ -270,6 +271,9 @@ pub struct Case {
     pub methods: Methods,
     /// Closed-form models of the static-equilibrium table (empty: no table).
     pub closed_form_models: Vec<ClosedFormModel>,
+    /// Elastic shaft and housing (`[elastic]`): the deformable steady-load solve
+    /// (`jbearing_solvers::elastic::solve_steady_load`) runs beside the methods.
+    pub elastic: Option<ElasticParams>,
     /// Values far outside what journal bearings have (the ranges: [`PLAUSIBLE_CLEARANCE_RATIO`]).
     pub warnings: Vec<CaseWarning>,
 }
@@ -538,8 +542,72 @@ impl Case {
                 "groove width along",
             ));
         }
+        if let Some(e) = &self.elastic {
+            push_elastic(&mut p, e, self.radius);
+        }
         p
     }
+}
+
+/// The `[elastic]` parameters as resolved (the layer counts the mesh gets).
+fn push_elastic(p: &mut Vec<Parameter>, e: &ElasticParams, radius: f64) {
+    let HousingShape::Square { half_width } = e.housing else {
+        unreachable!("case files make square housings")
+    };
+    let [shaft_layers, housing_layers] = e.layers.unwrap_or([
+        square_layers(e.hole_radius, radius, e.n_theta),
+        square_layers(radius, half_width, e.n_theta),
+    ]);
+    p.push(Parameter::number(
+        "elastic_youngs_modulus",
+        e.shaft_material.youngs_modulus,
+        "Pa",
+        "Young's modulus of shaft and housing",
+    ));
+    p.push(Parameter::number(
+        "elastic_poisson_ratio",
+        e.shaft_material.poisson_ratio,
+        "1",
+        "Poisson's ratio of shaft and housing",
+    ));
+    p.push(Parameter::number(
+        "elastic_shaft_hole_radius",
+        e.hole_radius,
+        "m",
+        "radius of the shaft's central hole (held radially)",
+    ));
+    p.push(Parameter::number(
+        "elastic_housing_half_width",
+        half_width,
+        "m",
+        "half-width of the square housing (outer edges fixed)",
+    ));
+    p.push(Parameter::integer(
+        "elastic_n_theta",
+        e.n_theta as i64,
+        "finite-element nodes around the film surface (both bodies)",
+    ));
+    p.push(Parameter::integer(
+        "elastic_shaft_layers",
+        shaft_layers as i64,
+        "element layers of the shaft, journal surface to hole",
+    ));
+    p.push(Parameter::integer(
+        "elastic_housing_layers",
+        housing_layers as i64,
+        "element layers of the housing, bore to outer edges",
+    ));
+    p.push(Parameter::number(
+        "elastic_gap_tolerance",
+        e.gap_tolerance,
+        "1",
+        "coupling converged when |C p - g| <= this times the clearance",
+    ));
+    p.push(Parameter::integer(
+        "elastic_max_iterations",
+        e.max_iterations as i64,
+        "most coupling iterations",
+    ));
 }
 
 /// Parsing context: the file, its text and the key locator.
@@ -981,7 +1049,15 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
     }
     let m = &raw.methods;
     let closed_form_models = resolve_closed_form(raw.closed_form.as_ref(), m.closed_form, ctx)?;
-    if !(m.mobility || m.rigorous || !closed_form_models.is_empty()) {
+    let steady = load_forces.iter().all(|f| *f == load_forces[0])
+        && matches!(journal_speed, Schedule::Constant(_))
+        && matches!(bearing_speed, Schedule::Constant(_));
+    let elastic = raw
+        .elastic
+        .as_ref()
+        .map(|e| resolve_elastic(e, radius, steady, ctx))
+        .transpose()?;
+    if !(m.mobility || m.rigorous || !closed_form_models.is_empty() || elastic.is_some()) {
         return Err(ctx.err(
             "methods",
             "every method is switched off: nothing to compute",
@@ -1044,10 +1120,105 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
             closed_form: !closed_form_models.is_empty(),
         },
         closed_form_models,
+        elastic,
         warnings: Vec::new(),
     };
     case.warnings = plausibility_warnings(&case, ctx);
     Ok(case)
+}
+
+/// `[elastic]`: the solver's elastic model of shaft and housing, checked here so that each
+/// bad value is named by its key (the solver would refuse it only after the other methods ran).
+fn resolve_elastic(
+    e: &ElasticSection,
+    radius: f64,
+    steady: bool,
+    ctx: &Ctx<'_>,
+) -> Result<ElasticParams, CaseError> {
+    if !steady {
+        return Err(ctx.err(
+            "elastic",
+            "the deformable (elastic) bearing is solved for a steady case only: one load point \
+             and constant journal and bearing speeds",
+        ));
+    }
+    let youngs_modulus = ctx.positive("elastic.youngs_modulus_pa", e.youngs_modulus_pa)?;
+    let nu = e.poisson_ratio;
+    if !(0.0..0.5).contains(&nu) {
+        return Err(ctx.err(
+            "elastic.poisson_ratio",
+            format!(
+                "must lie in [0, 0.5) (0.5 is incompressible, which the plane-strain \
+                 displacement elements cannot represent), got {nu}"
+            ),
+        ));
+    }
+    let hole = ctx.positive("elastic.shaft_hole_radius_m", e.shaft_hole_radius_m)?;
+    if hole >= radius {
+        return Err(ctx.err(
+            "elastic.shaft_hole_radius_m",
+            format!(
+                "the shaft's hole ({hole} m) must be smaller than the journal radius {radius} m"
+            ),
+        ));
+    }
+    let half_width = ctx.positive("elastic.housing_half_width_m", e.housing_half_width_m)?;
+    if half_width <= radius {
+        return Err(ctx.err(
+            "elastic.housing_half_width_m",
+            format!(
+                "the housing's outer edges ({half_width} m from the centre) must lie outside the \
+                 bore (radius {radius} m)"
+            ),
+        ));
+    }
+    if e.n_theta < 8 {
+        return Err(ctx.err(
+            "elastic.n_theta",
+            format!("needs at least 8 nodes around, got {}", e.n_theta),
+        ));
+    }
+    for (key, layers) in [
+        ("elastic.shaft_layers", e.shaft_layers),
+        ("elastic.housing_layers", e.housing_layers),
+    ] {
+        if layers == Some(0) {
+            return Err(ctx.err(key, "must be at least 1 element layer, got 0"));
+        }
+    }
+    let tol = e.gap_tolerance;
+    if !(tol > 0.0 && tol <= 1.0) {
+        return Err(ctx.err(
+            "elastic.gap_tolerance",
+            format!("must lie in (0, 1] (a fraction of the clearance), got {tol}"),
+        ));
+    }
+    if e.max_iterations == 0 {
+        return Err(ctx.err("elastic.max_iterations", "must be at least 1, got 0"));
+    }
+    let material = Material {
+        youngs_modulus,
+        poisson_ratio: nu,
+    };
+    let defaults = ElasticParams::steel(radius);
+    let layers = match (e.shaft_layers, e.housing_layers) {
+        (None, None) => None,
+        (s, h) => Some([
+            s.unwrap_or_else(|| square_layers(hole, radius, e.n_theta)),
+            h.unwrap_or_else(|| square_layers(radius, half_width, e.n_theta)),
+        ]),
+    };
+    Ok(ElasticParams {
+        shaft_material: material,
+        housing_material: material,
+        hole_radius: hole,
+        housing: HousingShape::Square { half_width },
+        n_theta: e.n_theta,
+        layers,
+        gap_tolerance: tol,
+        max_iterations: e.max_iterations,
+        ..defaults
+    })
 }
 
 /// The bearing section: (R, L, c) in m.

@@ -41,6 +41,8 @@ pub struct CaseFile {
     pub methods: MethodsSection,
     /// Closed-form static-equilibrium table, `[closed_form]`.
     pub closed_form: Option<ClosedFormSection>,
+    /// Elastic shaft and housing coupled to the film, `[elastic]`.
+    pub elastic: Option<ElasticSection>,
     /// A parameter sweep (`crate::sweep`): the file stands for many cases, which `batch` and
     /// `check` expand; a single case (`run`) refuses it.
     pub sweep: Option<toml::Table>,
@@ -67,6 +69,47 @@ pub enum ClosedFormModels {
 
 fn default_closed_form_models() -> ClosedFormModels {
     ClosedFormModels::One("all".into())
+}
+
+/// `[elastic]`: plane-strain elastic shaft and housing (`jbearing_solvers::elastic`) whose
+/// deformation adds to the film thickness.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ElasticSection {
+    /// Young's modulus E of shaft and housing, Pa.
+    pub youngs_modulus_pa: f64,
+    /// Poisson's ratio ν of shaft and housing.
+    pub poisson_ratio: f64,
+    /// Radius of the shaft's central hole (held radially), m.
+    pub shaft_hole_radius_m: f64,
+    /// Half-width of the square housing (outer edges fixed), m.
+    pub housing_half_width_m: f64,
+    /// Nodes around the film surface of both bodies.
+    #[serde(default = "default_elastic_n_theta")]
+    pub n_theta: usize,
+    /// Element layers of the shaft from the journal surface to the hole (default: nearly
+    /// square elements).
+    pub shaft_layers: Option<usize>,
+    /// Element layers of the housing from the bore to its edges (default: nearly square).
+    pub housing_layers: Option<usize>,
+    /// Coupling converged when |C p̄ − g| ≤ this × c at every surface node.
+    #[serde(default = "default_elastic_gap_tolerance")]
+    pub gap_tolerance: f64,
+    /// Most coupling (deformation) iterations.
+    #[serde(default = "default_elastic_max_iterations")]
+    pub max_iterations: usize,
+}
+
+/// The library's defaults (`ElasticParams::steel`): 240 nodes around, 1e-5 c, 200 iterations,
+/// what the JB1 validation converged with.
+fn default_elastic_n_theta() -> usize {
+    jbearing_solvers::elastic::ElasticParams::steel(1.0).n_theta
+}
+fn default_elastic_gap_tolerance() -> f64 {
+    jbearing_solvers::elastic::ElasticParams::steel(1.0).gap_tolerance
+}
+fn default_elastic_max_iterations() -> usize {
+    jbearing_solvers::elastic::ElasticParams::steel(1.0).max_iterations
 }
 
 /// `[bearing]`.

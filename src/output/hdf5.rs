@@ -32,7 +32,12 @@
 //! │      status(model)                          "ok" or why the model has no equilibrium
 //! │      eccentricity_ratio(model) [1], attitude_angle(model) [rad], line_of_centres_angle,
 //! │      min_film_thickness [m], film_force_x/y [N], force_residual [N], sommerfeld_number [1]
-//! └── VTKHDF/            film fields on the cylindrical surface (see `vtkhdf`)
+//! ├── elastic/           (a case with `[elastic]`) the deformable bearing along the film surface:
+//! │      angle(angle) [rad], surface_pressure, gap_change, film_thickness, bore_* and journal_*
+//! │      stresses (σ_r, σ_θ, σ_z, von Mises) [Pa]; scalars (see `super::elastic`)
+//! └── VTKHDF/            film fields on the cylindrical surface (see `vtkhdf`), or for a case
+//!                        with `[elastic]` the shaft and housing meshes with displacement and
+//!                        stress (`vtkhdf::write_bodies`)
 //! ```
 //!
 //! Dimensions are netCDF-4 style: each coordinate variable is an HDF5 dimension scale
@@ -55,8 +60,8 @@ use hdf5_metno_sys::h5::herr_t;
 use hdf5_metno_sys::h5i::hid_t;
 
 use super::{
-    CaseReport, ClosedFormTable, FieldSnapshots, Method, MethodResult, OutputError, OutputWriter,
-    ParameterValue, vtkhdf, write_atomically,
+    CaseReport, ClosedFormTable, ElasticReport, FieldSnapshots, Method, MethodResult, OutputError,
+    OutputWriter, ParameterValue, vtkhdf, write_atomically,
 };
 
 // The dimension-scale API of the HDF5 high-level library (libhdf5_hl, linked through the "hl"
@@ -357,7 +362,15 @@ impl FileWriter {
             self.write_input_files(file, r)?;
         }
 
-        if surface
+        if let Some(e) = &r.elastic {
+            self.write_elastic(file, e)?;
+        }
+
+        // One VTK dataset per file (/VTKHDF): the structure of a deformable bearing, else the
+        // film surface of the first method with fields.
+        if surface && let Some(e) = &r.elastic {
+            vtkhdf::write_bodies(file, &e.bodies).map_err(self.err("VTKHDF shaft and housing"))?;
+        } else if surface
             && let Some((method, fields)) = r
                 .methods
                 .iter()
@@ -585,6 +598,34 @@ impl FileWriter {
             self.str_attr(&ds, "units", units)?;
             self.str_attr(&ds, "long_name", long)?;
             self.f64_attr(&ds, "_FillValue", f64::NAN)?;
+        }
+        Ok(())
+    }
+
+    fn write_elastic(&mut self, file: &h5::File, e: &ElasticReport) -> Res<()> {
+        let g = file
+            .create_group("elastic")
+            .map_err(self.err("group elastic"))?;
+        self.str_attr(&g, "description", &e.description)?;
+        for p in &e.scalars {
+            let v = match p.value {
+                ParameterValue::Number(v) => v,
+                ParameterValue::Integer(v) => v as f64,
+                _ => continue,
+            };
+            self.scalar(&g, &p.key, v, &p.units, &p.long_name)?;
+        }
+        let angle = self.coordinate(
+            &g,
+            "angle",
+            &e.angle,
+            "rad",
+            "angle of the film-surface node from +x towards +y (bearing frame)",
+        )?;
+        for s in &e.series {
+            let ds = self.variable(&g, &s.name, &s.values, &[&angle])?;
+            self.str_attr(&ds, "units", &s.units)?;
+            self.str_attr(&ds, "long_name", &s.long_name)?;
         }
         Ok(())
     }

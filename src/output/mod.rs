@@ -40,12 +40,14 @@
 
 pub mod closed_form;
 pub mod csv_summary;
+pub mod elastic;
 pub mod hdf5;
 pub mod plots;
 pub mod vtkhdf;
 
 pub use self::closed_form::{ClosedFormRow, ClosedFormTable};
 pub use self::csv_summary::CsvSummaryWriter;
+pub use self::elastic::{BodyField, ElasticReport};
 pub use self::hdf5::Hdf5Writer;
 pub use self::plots::{ORBIT_LEGEND_WIDTH, PlotWriter, feed_windows, label_indices};
 
@@ -557,6 +559,8 @@ pub struct CaseReport {
     pub summary: Vec<SummaryRow>,
     /// The closed-form static-equilibrium table, when the case asks for it.
     pub closed_form: Option<ClosedFormTable>,
+    /// The deformable bearing (elastic shaft and housing), when the case has `[elastic]`.
+    pub elastic: Option<ElasticReport>,
     /// Warnings about the case (implausible values, cost above the soft budget), written as
     /// the file's `warnings` / `warning_kinds` attributes.
     pub warnings: Vec<ReportWarning>,

@@ -89,16 +89,28 @@ pub const ORBIT_LEGEND_WIDTH: u32 = 340;
 impl PlotWriter {
     /// Paths of the figures written for `report` in `dir`: cycle, orbit, load diagram, and the
     /// film map when the report has fields.
+    ///
+    /// A report with a deformable bearing (`elastic`) adds `CASE_elastic.png` (bore stresses and
+    /// the deformed film along the surface); one with no method (only the deformable bearing)
+    /// has only that figure.
     pub fn file_paths(report: &CaseReport, dir: &Path) -> Vec<PathBuf> {
-        let mut v = vec![
-            dir.join(format!("{}_cycle.png", report.case_name)),
-            dir.join(format!("{}_orbit.png", report.case_name)),
-            dir.join(format!("{}_load.png", report.case_name)),
-        ];
-        if film_fields(report).is_some() {
-            v.push(dir.join(format!("{}_film.png", report.case_name)));
+        let mut v = Vec::new();
+        if !report.methods.is_empty() {
+            v.push(dir.join(format!("{}_cycle.png", report.case_name)));
+            v.push(dir.join(format!("{}_orbit.png", report.case_name)));
+            v.push(dir.join(format!("{}_load.png", report.case_name)));
+            if film_fields(report).is_some() {
+                v.push(dir.join(format!("{}_film.png", report.case_name)));
+            }
+        }
+        if report.elastic.is_some() {
+            v.push(Self::elastic_path(report, dir));
         }
         v
+    }
+
+    fn elastic_path(report: &CaseReport, dir: &Path) -> PathBuf {
+        dir.join(format!("{}_elastic.png", report.case_name))
     }
 }
 
@@ -114,20 +126,32 @@ impl OutputWriter for PlotWriter {
             let path = path.to_path_buf();
             move |message: String| OutputError::Plot { path, message }
         };
-        ensure_font().map_err(plot_err(&paths[0]))?;
+        let Some(first) = paths.first() else {
+            return Ok(paths);
+        };
+        ensure_font().map_err(plot_err(first))?;
         let ctx = FigureContext::of(report);
-        write_atomically(&paths[0], |tmp| {
-            draw_cycle(report, &ctx, tmp, self.cycle_size).map_err(plot_err(&paths[0]))
-        })?;
-        write_atomically(&paths[1], |tmp| {
-            draw_orbit(report, &ctx, tmp, self.orbit_size).map_err(plot_err(&paths[1]))
-        })?;
-        write_atomically(&paths[2], |tmp| {
-            draw_load(report, &ctx, tmp, self.orbit_size).map_err(plot_err(&paths[2]))
-        })?;
-        if let Some(path) = paths.get(3) {
-            write_atomically(path, |tmp| {
-                draw_film(report, &ctx, tmp, self.film_size).map_err(plot_err(path))
+        if !report.methods.is_empty() {
+            write_atomically(&paths[0], |tmp| {
+                draw_cycle(report, &ctx, tmp, self.cycle_size).map_err(plot_err(&paths[0]))
+            })?;
+            write_atomically(&paths[1], |tmp| {
+                draw_orbit(report, &ctx, tmp, self.orbit_size).map_err(plot_err(&paths[1]))
+            })?;
+            write_atomically(&paths[2], |tmp| {
+                draw_load(report, &ctx, tmp, self.orbit_size).map_err(plot_err(&paths[2]))
+            })?;
+            if film_fields(report).is_some() {
+                let path = &paths[3];
+                write_atomically(path, |tmp| {
+                    draw_film(report, &ctx, tmp, self.film_size).map_err(plot_err(path))
+                })?;
+            }
+        }
+        if let Some(e) = &report.elastic {
+            let path = Self::elastic_path(report, dir);
+            write_atomically(&path, |tmp| {
+                draw_elastic(report, e, &ctx, tmp, self.film_size).map_err(plot_err(&path))
             })?;
         }
         Ok(paths)
@@ -1110,6 +1134,133 @@ fn draw_load(r: &CaseReport, ctx: &FigureContext, path: &Path, size: u32) -> Res
             (FAMILY, 16).into_font().color(&GREY),
         )))
         .map_err(e)?;
+    root.present().map_err(e)
+}
+
+/// The deformable bearing along the film surface against θ (bearing frame): the stresses on the
+/// housing bore (σ_r, σ_θ, σ_z, von Mises, with −p̄, which σ_r equals where the film presses) and
+/// below it the deformed film thickness h and the gap change g.
+fn draw_elastic(
+    r: &CaseReport,
+    el: &super::ElasticReport,
+    ctx: &FigureContext,
+    path: &Path,
+    size: (u32, u32),
+) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
+    let title_height = if ctx.warnings.is_empty() { 50 } else { 84 };
+    let root = BitMapBackend::new(path, (size.0, size.1 + title_height)).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    let body = title_block(
+        &root,
+        &format!(
+            "{}: deformable bearing, bore stresses and film",
+            r.case_name
+        ),
+        ctx,
+    )?;
+    let (top, bottom) = body.split_vertically((size.1 as f64 * 0.58) as u32);
+    let deg: Vec<f64> = el.angle.iter().map(|a| a.to_degrees()).collect();
+    let get = |name: &str| el.series(name).map(|s| s.values.clone());
+    let mpa = |v: Vec<f64>| v.into_iter().map(|x| x * 1e-6).collect::<Vec<_>>();
+    let um = |v: Vec<f64>| v.into_iter().map(|x| x * 1e6).collect::<Vec<_>>();
+    let stresses: Vec<(&str, Vec<f64>, RGBColor)> = [
+        ("σ_r", "bore_radial_stress", RGBColor(200, 30, 30)),
+        ("σ_θ", "bore_hoop_stress", RGBColor(30, 90, 200)),
+        ("σ_z", "bore_axial_stress", RGBColor(30, 150, 60)),
+        ("von Mises", "bore_von_mises_stress", RGBColor(40, 40, 40)),
+    ]
+    .into_iter()
+    .filter_map(|(label, name, color)| Some((label, mpa(get(name)?), color)))
+    .collect();
+    let minus_p: Vec<f64> = get("surface_pressure")
+        .map(|v| v.into_iter().map(|x| -x * 1e-6).collect())
+        .unwrap_or_default();
+    let film: Vec<(&str, Vec<f64>, RGBColor)> = [
+        ("h (deformed film)", "film_thickness", RGBColor(30, 90, 200)),
+        ("g (gap change)", "gap_change", RGBColor(200, 120, 20)),
+    ]
+    .into_iter()
+    .filter_map(|(label, name, color)| Some((label, um(get(name)?), color)))
+    .collect();
+    for (area, curves, extra, y_desc) in [
+        (
+            &top,
+            &stresses,
+            Some(&minus_p),
+            "stress on the housing bore [MPa]",
+        ),
+        (&bottom, &film, None, "film [µm]"),
+    ] {
+        let all = curves
+            .iter()
+            .flat_map(|c| c.1.iter())
+            .chain(extra.into_iter().flatten())
+            .copied()
+            .filter(|v| v.is_finite());
+        let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+        if !(lo.is_finite() && hi.is_finite()) {
+            note_panel(area, y_desc, "not in the results")?;
+            continue;
+        }
+        let (lo, hi) = padded_range(lo, hi);
+        let mut chart = ChartBuilder::on(area)
+            .margin(16)
+            .x_label_area_size(56)
+            .y_label_area_size(86)
+            .build_cartesian_2d(0.0..360.0, lo..hi)
+            .map_err(e)?;
+        chart
+            .configure_mesh()
+            .x_labels(13)
+            .y_labels(8)
+            .x_desc("θ [°] (bearing frame, from +x towards +y)")
+            .y_desc(y_desc)
+            .label_style((FAMILY, 17).into_font())
+            .axis_desc_style((FAMILY, 20).into_font())
+            .x_label_formatter(&|v| format_tick(*v))
+            .y_label_formatter(&|v| format_tick(*v))
+            .light_line_style(RGBColor(240, 240, 240))
+            .draw()
+            .map_err(e)?;
+        if let Some(p) = extra.filter(|p| !p.is_empty()) {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    deg.iter().copied().zip(p.iter().copied()),
+                    8,
+                    5,
+                    RGBColor(150, 150, 150).stroke_width(2),
+                ))
+                .map_err(e)?
+                .label("−p (film pressure, mean over the length)")
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], RGBColor(150, 150, 150))
+                });
+        }
+        for (label, values, color) in curves.iter() {
+            let color = *color;
+            chart
+                .draw_series(LineSeries::new(
+                    deg.iter().copied().zip(values.iter().copied()),
+                    color.stroke_width(3),
+                ))
+                .map_err(e)?
+                .label(*label)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font((FAMILY, 18).into_font())
+            .position(SeriesLabelPosition::LowerLeft)
+            .draw()
+            .map_err(e)?;
+    }
     root.present().map_err(e)
 }
 

@@ -1,4 +1,5 @@
-//! The film fields on the cylindrical bearing surface as a VTKHDF group, so that pyvista
+//! The film fields on the cylindrical bearing surface (or, for a deformable bearing, the shaft
+//! and housing meshes: [`write_bodies`]) as a VTKHDF group, so that pyvista
 //! (`pyvista.read(path, force_ext=".vtkhdf")`) and ParaView (VTKHDF reader) show the pressure
 //! where it acts.
 //!
@@ -163,5 +164,118 @@ pub fn write_surface(
             .with_data(&data_offsets[..])
             .create(fld.name.as_str())?;
     }
+    Ok(())
+}
+
+/// Writes `/VTKHDF` into `file`: the plane-strain bodies of a deformable bearing (shaft and
+/// housing, `super::elastic`) as one static `UnstructuredGrid` of quadrilaterals (one part):
+///
+/// ```text
+///   points: body 0's nodes, then body 1's, … (x, y, z = 0), m, undeformed;
+///   cells:  each body's quads with its node numbers shifted by the points before it;
+///   PointData: displacement [n, 3] (u_x, u_y, 0) m (ParaView's "Warp By Vector" draws the
+///              deformed bodies), stress_xx, stress_yy, stress_xy, stress_zz, von_mises_stress,
+///              radial_stress, hoop_stress (polar frame about the bore centre) Pa;
+///   CellData:  body (0, 1, … in the order given: shaft 0, housing 1).
+/// ```
+///
+/// The bodies share the film-surface radius but not its nodes (each has its own ring at r = R),
+/// so the grid holds two coincident rings there, one per body.
+pub fn write_bodies(file: &h5::File, bodies: &[super::BodyField]) -> h5::Result<()> {
+    let n_points: usize = bodies.iter().map(|b| b.points.len()).sum();
+    let n_cells: usize = bodies.iter().map(|b| b.cells.len()).sum();
+    let root = file.create_group("VTKHDF")?;
+    root.new_attr::<i64>()
+        .shape(2)
+        .create("Version")?
+        .write(&[2i64, 2])?;
+    let kind: FixedAscii<16> = FixedAscii::from_ascii(b"UnstructuredGrid")
+        .map_err(|e| h5::Error::from(e.to_string().as_str()))?;
+    root.new_attr::<FixedAscii<16>>()
+        .shape(())
+        .create("Type")?
+        .write_scalar(&kind)?;
+    let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+    let about = format!(
+        "plane-strain bodies of the deformable bearing ({}; CellData body = index in this \
+         list), undeformed points (m), nodal displacement (m) and stresses (Pa)",
+        names.join(", ")
+    );
+    let about: hdf5_metno::types::VarLenUnicode = about.parse().expect("no NUL");
+    root.new_attr::<hdf5_metno::types::VarLenUnicode>()
+        .shape(())
+        .create("description")?
+        .write_scalar(&about)?;
+
+    let mut points = ndarray::Array2::<f64>::zeros((n_points, 3));
+    let mut displacement = ndarray::Array2::<f64>::zeros((n_points, 3));
+    let mut connectivity = Vec::with_capacity(4 * n_cells);
+    let mut body_id = Vec::with_capacity(n_cells);
+    let scalar_names = [
+        "stress_xx",
+        "stress_yy",
+        "stress_xy",
+        "stress_zz",
+        "von_mises_stress",
+        "radial_stress",
+        "hoop_stress",
+    ];
+    let mut scalars: Vec<Vec<f64>> = vec![Vec::with_capacity(n_points); scalar_names.len()];
+    let mut first = 0usize;
+    for (ib, b) in bodies.iter().enumerate() {
+        for (k, p) in b.points.iter().enumerate() {
+            let row = first + k;
+            points[[row, 0]] = p[0];
+            points[[row, 1]] = p[1];
+            displacement[[row, 0]] = b.displacement[k][0];
+            displacement[[row, 1]] = b.displacement[k][1];
+            let [xx, yy, xy, zz] = b.stress[k];
+            let [sr, st] = b.polar_stress(k);
+            for (v, x) in scalars
+                .iter_mut()
+                .zip([xx, yy, xy, zz, b.von_mises(k), sr, st])
+            {
+                v.push(x);
+            }
+        }
+        for cell in &b.cells {
+            connectivity.extend(cell.iter().map(|&n| (first + n) as i64));
+            body_id.push(ib as i64);
+        }
+        first += b.points.len();
+    }
+    let offsets: Vec<i64> = (0..=n_cells as i64).map(|c| 4 * c).collect();
+    let types = vec![VTK_QUAD; n_cells];
+    let ds_i64 = |name: &str, data: &[i64]| -> h5::Result<()> {
+        root.new_dataset_builder().with_data(data).create(name)?;
+        Ok(())
+    };
+    ds_i64("NumberOfPoints", &[n_points as i64])?;
+    ds_i64("NumberOfCells", &[n_cells as i64])?;
+    ds_i64("NumberOfConnectivityIds", &[connectivity.len() as i64])?;
+    root.new_dataset_builder()
+        .with_data(points.view())
+        .create("Points")?;
+    ds_i64("Connectivity", &connectivity)?;
+    ds_i64("Offsets", &offsets)?;
+    root.new_dataset_builder()
+        .with_data(&types[..])
+        .create("Types")?;
+    let point_data = root.create_group("PointData")?;
+    point_data
+        .new_dataset_builder()
+        .with_data(displacement.view())
+        .create("displacement")?;
+    for (name, values) in scalar_names.iter().zip(&scalars) {
+        point_data
+            .new_dataset_builder()
+            .with_data(&values[..])
+            .create(*name)?;
+    }
+    let cell_data = root.create_group("CellData")?;
+    cell_data
+        .new_dataset_builder()
+        .with_data(&body_id[..])
+        .create("body")?;
     Ok(())
 }

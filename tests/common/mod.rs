@@ -276,6 +276,7 @@ pub fn report(case_name: &str) -> CaseReport {
         methods: vec![rig, mob],
         summary,
         closed_form: None,
+        elastic: None,
         warnings: Vec::new(),
     }
 }

@@ -13,51 +13,95 @@
 //! hole r_h = 0.4 R = 100 mm, square housing of half-width H = 2R = 500 mm; the sensitivity
 //! table below varies H, r_h and E.
 //!
-//! The film is the plane model of `reynolds_seed003.rs` (a bearing 100 diameters long with the
-//! same load per length, β = 1.5e13 Pa), here on 240 × 5 nodes: 3 cells of 16.7 m along, whose
-//! z-flux to the ends is (R/L)² ≈ 1e-4 of the circumferential one, so every row carries the
-//! plane solution (checked: the rigid row on this grid against the 240 × 101 grid's e and
-//! p_max).
+//! The configuration is the case file `cases/benasciutti_jb1_elastic.toml`, loaded here through
+//! the application's own reader (`jbearing::run::elastic_problem`), so that what `jbearing run`
+//! solves is what this test checks. The film is the plane model of `reynolds_seed003.rs` (a
+//! bearing 100 diameters long with the same load per length, β = 1.5e13 Pa), on 240 × 5 nodes:
+//! 3 cells of 16.7 m along, whose z-flux to the ends is (R/L)² ≈ 1e-4 of the circumferential
+//! one, so every row carries the plane solution (checked: the rigid row on this grid against the
+//! 240 × 101 grid's e and p_max).
 
+use std::path::Path;
+
+use jbearing::case::Case;
+use jbearing::run::{ElasticProblem, elastic_problem};
 use jbearing_solvers::elastic::{
     ElasticBearing, ElasticParams, ElasticSolution, HousingShape, Material, solve_steady_load,
 };
-use jbearing_solvers::reynolds::{
-    GridParams, OperatingConditions, ReynoldsParams, ReynoldsSolver, SupplyModel,
-};
-use jbearing_solvers::viscosity::{Temperature, ViscosityModel, Vogel};
+use jbearing_solvers::reynolds::{GridParams, OperatingConditions, ReynoldsSolver, SupplyModel};
+use jbearing_solvers::viscosity::{Temperature, Vogel};
 
 const R: f64 = 0.25;
 const C: f64 = 0.25e-3;
 
+/// The shipped case file's deformable problem.
+fn problem() -> ElasticProblem {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/benasciutti_jb1_elastic.toml");
+    let case = Case::from_file(&path).unwrap();
+    elastic_problem(&case).expect("the case has [elastic]")
+}
+
+/// The case's film on `n_theta` × `n_z` nodes.
 fn film(n_theta: usize, n_z: usize) -> ReynoldsSolver {
-    let l = 100.0 * 2.0 * R;
-    let mut p = ReynoldsParams::plain(R, l, C, 0.1678);
-    p.supply = SupplyModel::AxialLineAtMaxGap;
-    p.viscosity_model = Some(ViscosityModel {
-        vogel: Vogel::seed003_iso_vg_680(),
-        temperature: Temperature::LinearOverSpan {
-            inlet: 40.0,
-            outlet: 80.0,
-            span: std::f64::consts::PI,
-        },
-        pressure_coefficient: 0.0,
-    });
+    let mut p = problem().film;
     p.grid = GridParams { n_theta, n_z };
-    p.bulk_modulus = 1.5e13;
     ReynoldsSolver::new(p).unwrap()
 }
 
 fn conditions() -> OperatingConditions {
-    OperatingConditions {
-        journal_speed: 65.0 * 2.0 * std::f64::consts::PI / 60.0,
-        bearing_speed: 0.0,
-        feed_pressures: vec![],
-    }
+    problem().conditions
 }
 
-fn load(solver: &ReynoldsSolver) -> [f64; 2] {
-    [0.0, -3.6e6 / 0.3 * solver.params().length]
+fn load(_solver: &ReynoldsSolver) -> [f64; 2] {
+    problem().load
+}
+
+/// The case file is the paper's JB1 as the module docs describe it: the plane model (L = 100 D,
+/// 3600 kN per 0.3 m), the Vogel curve through Table 2's points, T linear 40 → 80 °C over 180°,
+/// the axial supply line, 65 rpm, and the documented baseline structure (steel, hole 0.4 R,
+/// square housing H = 2 R, `ElasticParams::steel`).
+#[test]
+fn the_case_file_is_the_documented_configuration() {
+    let p = problem();
+    let f = &p.film;
+    assert_eq!((f.radius, f.clearance), (R, C));
+    assert_eq!(f.length, 100.0 * 2.0 * R);
+    assert!((p.load[1] / (-3.6e6 / 0.3 * f.length) - 1.0).abs() < 1e-12);
+    assert_eq!(p.load[0], 0.0);
+    assert_eq!(f.supply, SupplyModel::AxialLineAtMaxGap);
+    assert_eq!(
+        f.grid,
+        GridParams {
+            n_theta: 240,
+            n_z: 5
+        }
+    );
+    assert_eq!(f.bulk_modulus, 1.5e13);
+    let m = f.viscosity_model.expect("a Vogel law");
+    let v = Vogel::seed003_iso_vg_680();
+    for t in [40.0, 60.0, 80.0] {
+        assert!(
+            (m.vogel.viscosity(t) / v.viscosity(t) - 1.0).abs() < 1e-12,
+            "{t} °C"
+        );
+    }
+    assert_eq!(m.pressure_coefficient, 0.0);
+    match m.temperature {
+        Temperature::LinearOverSpan {
+            inlet,
+            outlet,
+            span,
+        } => {
+            assert_eq!((inlet, outlet), (40.0, 80.0));
+            assert!((span - std::f64::consts::PI).abs() < 1e-15);
+        }
+        other => panic!("temperature {other:?}"),
+    }
+    assert!(
+        (p.conditions.journal_speed / (65.0 * std::f64::consts::TAU / 60.0) - 1.0).abs() < 1e-15
+    );
+    assert_eq!(p.conditions.bearing_speed, 0.0);
+    assert_eq!(p.elastic, ElasticParams::steel(R));
 }
 
 fn wrap_deg(a: f64) -> f64 {
@@ -194,7 +238,7 @@ fn jb1_deformable_against_the_paper() {
     assert!((e_rigid / e_fine - 1.0).abs() < 0.003);
     assert!((p_rigid / p_fine - 1.0).abs() < 0.01);
 
-    let base = ElasticParams::steel(R);
+    let base = problem().elastic;
     let (a, bearing, sol) = deformable(base.clone());
     eprintln!(
         "deformable (steel, hole 0.4R, square housing H = 2R, 240 around): e {:.4} mm (paper 0.2953), p_max {:.2} MPa (43) at {:.2}° from the load line, h_min {:.4} mm, attitude {:.2}°; |σ_r|max {:.2} MPa, bore von Mises max {:.2} MPa (21), housing von Mises max {:.2} MPa (35), |σ_r + p̄| ≤ {:.2} MPa; {} iterations, {} film solves, {:.1} s",
