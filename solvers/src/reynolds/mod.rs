@@ -1306,6 +1306,9 @@ impl ReynoldsSolver {
         Ok(Prepared { h, psi, g, speed })
     }
 
+    /// The complementarity problem of one solve (module docs): the prepared film, the
+    /// semismooth Newton on the switch ([`ReynoldsSolver::complementarity_newton`]), the check
+    /// φ ≥ 0, the face fluxes, and the converged linearization kept for the force Jacobian.
     fn solve_core(
         &mut self,
         eps: [f64; 2],
@@ -1313,16 +1316,18 @@ impl ReynoldsSolver {
         time: TimeTerm,
         warm: Option<(Vec<f64>, Vec<f64>)>,
     ) -> Result<Core, ReynoldsError> {
-        let Prepared {
-            h,
-            mut psi,
-            mut g,
-            speed,
-        } = self.prepare(eps, conditions, warm)?;
-        let p = &self.params;
+        let Prepared { h, psi, g, speed } = self.prepare(eps, conditions, warm)?;
+        let (psi, g, newton, residual) = self.complementarity_newton(&h, speed, psi, g, time)?;
         let grid = &self.grid;
-        let n = grid.len();
-        let nz = grid.n_z;
+        let (n, nz) = (grid.len(), grid.n_z);
+        // φ ≥ 0 (up to the solve tolerance).
+        if let Some(k) = (0..n).find(|&k| psi[k] < -1.0 - 1e-9) {
+            return Err(ReynoldsError::NegativeFilmFraction {
+                value: 1.0 + psi[k],
+                theta_index: k / nz,
+                z_index: k % nz,
+            });
+        }
         let level = Level {
             grid,
             h: &h.node,
@@ -1331,130 +1336,6 @@ impl ReynoldsSolver {
             k_z: &self.k_z,
             speed,
         };
-        // Semismooth Newton = primal–dual active set = block principal pivoting, with Murty's
-        // single pivots as the safeguard (module docs).
-        let n_unknown = grid
-            .kind
-            .iter()
-            .filter(|&&k| k == NodeKind::Unknown)
-            .count();
-        let mut newton = NewtonCounts::default();
-        set_switch(grid, &psi, &mut g);
-        let loose = (p.tolerance * 1e4).min(1e-6).max(p.tolerance);
-        let always_tight = p.linear_solver == LinearSolver::SparseLu;
-        let mut tight = always_tight;
-        let mut g_new = g.clone();
-        let mut last_residual = f64::NAN;
-        // Júdice & Pires' counters: the fewest infeasible nodes so far, and how many more
-        // block steps may fail to lower it before a single (Murty) pivot is taken.
-        let mut fewest_infeasible = usize::MAX;
-        let mut block_tries = BLOCK_TRIES;
-        let mut r = vec![0.0; n];
-        let mut first_residual = f64::NAN;
-        let residual = loop {
-            if newton.iterations >= p.max_newton_iterations {
-                return Err(ReynoldsError::ComplementarityNotConverged {
-                    iterations: newton.iterations,
-                    residual: last_residual,
-                    tolerance: p.tolerance,
-                    switched_last: newton.switched_last,
-                    n_unknown,
-                });
-            }
-            newton.iterations += 1;
-            // Newton step: the frozen-g system A(g) y = b.
-            discretization::assemble(&level, &g, &self.dirichlet, time, &mut self.stencil);
-            let (rmax_now, scale) = self.stencil.residual(grid, &psi, &mut r);
-            if !first_residual.is_finite() {
-                first_residual = rmax_now.max(f64::MIN_POSITIVE);
-            }
-            if matches!(time, TimeTerm::Steady) {
-                // Pseudo-transient continuation (module docs): (A + D) y = b + D ψ.
-                let sigma = STEADY_SHIFT * (rmax_now / first_residual).min(1.0);
-                for k in 0..n {
-                    if grid.kind[k] == NodeKind::Unknown {
-                        let d = sigma * 0.5 * speed.abs() * level.h[k] * grid.row_width(k % nz);
-                        self.stencil.p[k] += d;
-                        self.stencil.rhs[k] += d * psi[k];
-                    }
-                }
-            }
-            let linear_tolerance = if tight { p.tolerance } else { loose };
-            let mut y = psi.clone();
-            match p.linear_solver.preconditioner() {
-                Some(pc) => {
-                    let info = adi::solve_krylov(
-                        grid,
-                        &self.stencil,
-                        &mut y,
-                        linear_tolerance,
-                        Some(scale),
-                        p.max_linear_iterations,
-                        pc,
-                        Some(&g),
-                        &mut self.ws,
-                    )?;
-                    newton.linear_iterations += info.iterations;
-                }
-                None => oracle::solve_lu(grid, &self.stencil, &mut y)?,
-            }
-            if let Some(k) = y.iter().position(|x| !x.is_finite()) {
-                return Err(ReynoldsError::NonFinite {
-                    what: "ψ = φ − 1",
-                    theta_index: k / nz,
-                    z_index: k % nz,
-                    iteration: newton.iterations,
-                });
-            }
-            // The infeasible nodes: where the sign of y disagrees with g.
-            g_new.copy_from_slice(&g);
-            let infeasible = set_switch(grid, &y, &mut g_new);
-            newton.switched_last = infeasible;
-            // The nonlinear residual at y with its own switch H(y): converged if small (also
-            // when nodes with |ψ| at round-off level flip between equally valid states).
-            discretization::assemble(&level, &g_new, &self.dirichlet, time, &mut self.stencil);
-            let (rmax, _) = self.stencil.residual(grid, &y, &mut r);
-            last_residual = if scale > 0.0 { rmax / scale } else { 0.0 };
-            psi = y;
-            if rmax <= p.tolerance * scale || scale == 0.0 {
-                g.copy_from_slice(&g_new);
-                break last_residual;
-            }
-            if infeasible == 0 {
-                // The switch is right: solve it tightly (one more Newton step, same g).
-                tight = true;
-                continue;
-            }
-            tight = always_tight;
-            if infeasible < fewest_infeasible {
-                fewest_infeasible = infeasible;
-                block_tries = BLOCK_TRIES;
-            } else if block_tries > 0 {
-                block_tries -= 1;
-            } else {
-                // Murty's least-index single pivot, with a tight solve.
-                let k = (0..n).find(|&k| g_new[k] != g[k]).expect("infeasible > 0");
-                g[k] = g_new[k];
-                newton.single_pivots += 1;
-                tight = true;
-                continue;
-            }
-            // Block pivot: every infeasible node changes state (the full semismooth Newton
-            // step).
-            g.copy_from_slice(&g_new);
-        };
-        let iteration = newton.iterations;
-        let linear_iterations = newton.linear_iterations;
-        // φ ≥ 0 (up to the solve tolerance).
-        for k in 0..n {
-            if psi[k] < -1.0 - 1e-9 {
-                return Err(ReynoldsError::NegativeFilmFraction {
-                    value: 1.0 + psi[k],
-                    theta_index: k / nz,
-                    z_index: k % nz,
-                });
-            }
-        }
         let mut flux_theta = vec![0.0; n];
         let mut flux_z = vec![0.0; n];
         discretization::face_fluxes(&level, &g, &psi, &mut flux_theta, &mut flux_z);
@@ -1482,11 +1363,228 @@ impl ReynoldsSolver {
             g,
             flux_theta,
             flux_z,
-            iterations: iteration,
+            iterations: newton.iterations,
             single_pivots: newton.single_pivots,
-            linear_iterations,
+            linear_iterations: newton.linear_iterations,
             residual,
         })
+    }
+
+    /// Semismooth Newton = primal–dual active set = block principal pivoting on the switch g,
+    /// with Murty's single pivots as the safeguard (module docs): each step solves the
+    /// frozen-switch system ([`FrozenSwitch::solve`]), resets g = H(y), and stops when the
+    /// nonlinear residual at y with its own switch is below the tolerance. Returns ψ, g, the
+    /// counts and the final scaled residual.
+    fn complementarity_newton(
+        &mut self,
+        h: &FilmThickness,
+        speed: f64,
+        mut psi: Vec<f64>,
+        mut g: Vec<f64>,
+        time: TimeTerm,
+    ) -> Result<(Vec<f64>, Vec<f64>, NewtonCounts, f64), ReynoldsError> {
+        let Self {
+            params: p,
+            grid,
+            stencil,
+            ws,
+            k_theta,
+            k_z,
+            dirichlet,
+            ..
+        } = self;
+        let p = &*p;
+        let grid = &*grid;
+        let mut frozen = FrozenSwitch {
+            level: Level {
+                grid,
+                h: &h.node,
+                h_face: &h.face_theta,
+                k_theta,
+                k_z,
+                speed,
+            },
+            params: p,
+            dirichlet,
+            time,
+            stencil,
+            ws,
+            r: vec![0.0; grid.len()],
+            first_residual: f64::NAN,
+        };
+        let n_unknown = grid
+            .kind
+            .iter()
+            .filter(|&&k| k == NodeKind::Unknown)
+            .count();
+        let mut newton = NewtonCounts::default();
+        set_switch(grid, &psi, &mut g);
+        let loose = (p.tolerance * 1e4).min(1e-6).max(p.tolerance);
+        let always_tight = p.linear_solver == LinearSolver::SparseLu;
+        let mut tight = always_tight;
+        let mut g_new = g.clone();
+        let mut last_residual = f64::NAN;
+        let mut rule = PivotRule {
+            fewest_infeasible: usize::MAX,
+            block_tries: BLOCK_TRIES,
+        };
+        let residual = loop {
+            if newton.iterations >= p.max_newton_iterations {
+                return Err(ReynoldsError::ComplementarityNotConverged {
+                    iterations: newton.iterations,
+                    residual: last_residual,
+                    tolerance: p.tolerance,
+                    switched_last: newton.switched_last,
+                    n_unknown,
+                });
+            }
+            newton.iterations += 1;
+            let linear_tolerance = if tight { p.tolerance } else { loose };
+            let (y, scale) = frozen.solve(&g, &psi, linear_tolerance, &mut newton)?;
+            // The infeasible nodes: where the sign of y disagrees with g.
+            g_new.copy_from_slice(&g);
+            let infeasible = set_switch(grid, &y, &mut g_new);
+            newton.switched_last = infeasible;
+            // The nonlinear residual at y with its own switch H(y): converged if small (also
+            // when nodes with |ψ| at round-off level flip between equally valid states).
+            let rmax = frozen.residual(&g_new, &y);
+            last_residual = if scale > 0.0 { rmax / scale } else { 0.0 };
+            psi = y;
+            if rmax <= p.tolerance * scale || scale == 0.0 {
+                g.copy_from_slice(&g_new);
+                break last_residual;
+            }
+            if infeasible == 0 {
+                // The switch is right: solve it tightly (one more Newton step, same g).
+                tight = true;
+                continue;
+            }
+            tight = always_tight;
+            match rule.choose(infeasible, &g, &g_new) {
+                // Block pivot: every infeasible node changes state (the full semismooth
+                // Newton step).
+                Pivot::Block => g.copy_from_slice(&g_new),
+                // Murty's least-index single pivot, with a tight solve.
+                Pivot::Single(k) => {
+                    g[k] = g_new[k];
+                    newton.single_pivots += 1;
+                    tight = true;
+                }
+            }
+        };
+        Ok((psi, g, newton, residual))
+    }
+}
+
+/// One Newton step's frozen-switch system A(g) y = b and its residual, with the solver's
+/// stencil and workspace borrowed.
+struct FrozenSwitch<'a> {
+    level: Level<'a>,
+    params: &'a ReynoldsParams,
+    dirichlet: &'a [f64],
+    time: TimeTerm<'a>,
+    stencil: &'a mut Stencil,
+    ws: &'a mut AdiWorkspace,
+    /// Residual scratch.
+    r: Vec<f64>,
+    /// The first step's residual, the reference of the steady solves' shift.
+    first_residual: f64,
+}
+
+impl FrozenSwitch<'_> {
+    /// Assemble A(g) at ψ, add the steady solves' pseudo-transient shift (A + D) y = b + D ψ
+    /// (module docs), and solve to `linear_tolerance` (Krylov with the configured
+    /// preconditioner, or the sparse-LU oracle). Returns y and the residual scale; a non-finite
+    /// y is an error naming the node and the Newton step.
+    fn solve(
+        &mut self,
+        g: &[f64],
+        psi: &[f64],
+        linear_tolerance: f64,
+        newton: &mut NewtonCounts,
+    ) -> Result<(Vec<f64>, f64), ReynoldsError> {
+        let (grid, speed) = (self.level.grid, self.level.speed);
+        let (n, nz) = (grid.len(), grid.n_z);
+        discretization::assemble(&self.level, g, self.dirichlet, self.time, self.stencil);
+        let (rmax_now, scale) = self.stencil.residual(grid, psi, &mut self.r);
+        if !self.first_residual.is_finite() {
+            self.first_residual = rmax_now.max(f64::MIN_POSITIVE);
+        }
+        if matches!(self.time, TimeTerm::Steady) {
+            let sigma = STEADY_SHIFT * (rmax_now / self.first_residual).min(1.0);
+            for k in 0..n {
+                if grid.kind[k] == NodeKind::Unknown {
+                    let d = sigma * 0.5 * speed.abs() * self.level.h[k] * grid.row_width(k % nz);
+                    self.stencil.p[k] += d;
+                    self.stencil.rhs[k] += d * psi[k];
+                }
+            }
+        }
+        let p = self.params;
+        let mut y = psi.to_vec();
+        match p.linear_solver.preconditioner() {
+            Some(pc) => {
+                let info = adi::solve_krylov(
+                    grid,
+                    self.stencil,
+                    &mut y,
+                    linear_tolerance,
+                    Some(scale),
+                    p.max_linear_iterations,
+                    pc,
+                    Some(g),
+                    self.ws,
+                )?;
+                newton.linear_iterations += info.iterations;
+            }
+            None => oracle::solve_lu(grid, self.stencil, &mut y)?,
+        }
+        if let Some(k) = y.iter().position(|x| !x.is_finite()) {
+            return Err(ReynoldsError::NonFinite {
+                what: "ψ = φ − 1",
+                theta_index: k / nz,
+                z_index: k % nz,
+                iteration: newton.iterations,
+            });
+        }
+        Ok((y, scale))
+    }
+
+    /// The nonlinear residual's max norm at `y` with switch `g`.
+    fn residual(&mut self, g: &[f64], y: &[f64]) -> f64 {
+        discretization::assemble(&self.level, g, self.dirichlet, self.time, self.stencil);
+        self.stencil.residual(self.level.grid, y, &mut self.r).0
+    }
+}
+
+/// The pivoting rule of \[JudicePires1994\]: the fewest infeasible nodes so far, and how many
+/// more block steps may fail to lower it before a single (Murty) pivot is taken.
+struct PivotRule {
+    fewest_infeasible: usize,
+    block_tries: usize,
+}
+
+/// What the next switch is.
+enum Pivot {
+    /// Every infeasible node changes state.
+    Block,
+    /// Only this node (the least index whose state differs) changes.
+    Single(usize),
+}
+
+impl PivotRule {
+    fn choose(&mut self, infeasible: usize, g: &[f64], g_new: &[f64]) -> Pivot {
+        if infeasible < self.fewest_infeasible {
+            self.fewest_infeasible = infeasible;
+            self.block_tries = BLOCK_TRIES;
+            Pivot::Block
+        } else if self.block_tries > 0 {
+            self.block_tries -= 1;
+            Pivot::Block
+        } else {
+            let k = (0..g.len()).find(|&k| g_new[k] != g[k]);
+            Pivot::Single(k.expect("infeasible > 0"))
+        }
     }
 }
 

@@ -24,6 +24,7 @@
 //!   integral of docs/conventions.md §5, its pressure part evaluated on the faces of the scheme).
 
 use ndarray::Array2;
+use std::f64::consts::TAU;
 
 use super::grid::NodeKind;
 use super::{Core, FilmSolution, OperatingConditions, ReynoldsParams};
@@ -46,50 +47,10 @@ pub(crate) fn film_solution(
 ) -> FilmSolution {
     let grid = &core.grid;
     let (nt, nz) = (grid.n_theta, grid.n_z);
-    let n = grid.len();
-    let beta = params.bulk_modulus;
-    let pcav = params.cavitation_pressure;
-    let pamb = params.ambient_pressure;
-    let dx = grid.radius * grid.d_theta;
     let speed = params.radius * (conditions.journal_speed - conditions.bearing_speed);
-
-    let mut pressure = vec![0.0; n];
-    for k in 0..n {
-        pressure[k] = match grid.kind[k] {
-            NodeKind::End | NodeKind::SupplyLine => pamb,
-            _ => pcav + core.g[k] * beta * core.psi[k],
-        };
-    }
-    // Force, p_max, cavitated fraction.
-    let mut force = [0.0, 0.0];
-    let mut pmax = f64::NEG_INFINITY;
-    let mut pmax_at = [0.0, 0.0];
-    let mut cav_area = 0.0;
-    let mut area = 0.0;
-    let mut content = 0.0;
-    for i in 0..nt {
-        let th = grid.theta(i);
-        let (c, s) = (th.cos(), th.sin());
-        for j in 0..nz {
-            let k = i * nz + j;
-            let w = grid.area_weight[k];
-            let dp = pressure[k] - pamb;
-            force[0] -= w * dp * c;
-            force[1] -= w * dp * s;
-            if pressure[k] > pmax {
-                pmax = pressure[k];
-                pmax_at = [th.rem_euclid(2.0 * std::f64::consts::PI), grid.z(j)];
-            }
-            area += w;
-            if grid.kind[k] == NodeKind::Unknown {
-                content += grid.radius * grid.d_theta * grid.dz * core.h[k] * (1.0 + core.psi[k]);
-            }
-            if core.g[k] < 0.5 {
-                cav_area += w;
-            }
-        }
-    }
-    let load_capacity = force[0].hypot(force[1]);
+    let pressure = nodal_pressure(params, core);
+    let integrals = PressureIntegrals::new(params, core, &pressure);
+    let force = integrals.force;
     let attitude_angle = {
         let load_dir = (-force[1]).atan2(-force[0]);
         let ecc_dir = eps[1].atan2(eps[0]);
@@ -97,65 +58,174 @@ pub(crate) fn film_solution(
         if speed < 0.0 { -a } else { a }
     };
     let emag = eps[0].hypot(eps[1]);
-    let min_film_thickness = params.clearance * (1.0 - emag);
-    let min_film_location = [
-        eps[1].atan2(eps[0]).rem_euclid(2.0 * std::f64::consts::PI),
-        0.0,
-    ];
+    let flows = BoundaryFlows::new(params, core);
+    let shear = Shear::new(params, core, mu, &pressure, speed);
 
-    // Flows through region boundaries.
-    let region = |k: usize| match grid.kind[k] {
-        NodeKind::Unknown => Region::Unknown,
-        NodeKind::End => {
-            if k.is_multiple_of(nz) {
-                Region::EndLow
-            } else {
-                Region::EndHigh
+    let shape = (nt, nz);
+    let to_arr = |v: Vec<f64>| Array2::from_shape_vec(shape, v).expect("grid shape");
+    let density: Vec<f64> = core.psi.iter().map(|p| 1.0 + p).collect();
+    let fraction: Vec<f64> = density
+        .iter()
+        .zip(&core.g)
+        .map(|(&d, &g)| if g > 0.5 { 1.0 } else { d })
+        .collect();
+    FilmSolution {
+        film_force: force,
+        load_capacity: force[0].hypot(force[1]),
+        attitude_angle,
+        min_film_thickness: params.clearance * (1.0 - emag),
+        min_film_location: [eps[1].atan2(eps[0]).rem_euclid(TAU), 0.0],
+        max_pressure: integrals.max_pressure,
+        max_pressure_location: integrals.max_pressure_location,
+        cavitated_fraction: integrals.cavitated_fraction,
+        film_content: integrals.film_content,
+        side_leakage: flows.side_leakage,
+        supply_flow: flows.supply,
+        supply_line_flow: flows.supply_line,
+        recirculated_flow: recirculated_flow(params, core, speed),
+        friction_torque_journal: shear.torque_journal,
+        friction_torque_bearing: shear.torque_bearing,
+        power_loss: shear.power_loss,
+        iterations: core.iterations,
+        single_pivots: core.single_pivots,
+        linear_iterations: core.linear_iterations,
+        residual: core.residual,
+        theta: (0..nt).map(|i| grid.theta(i)).collect(),
+        z: (0..nz).map(|j| grid.z(j)).collect(),
+        pressure: to_arr(pressure),
+        density_ratio: to_arr(density),
+        film_fraction: to_arr(fraction),
+        switch: to_arr(core.g.clone()),
+    }
+}
+
+/// p = p_cav + g β ψ at unknowns (and grooves, whose ψ holds the feed), p_amb at the ends and
+/// on the supply line.
+fn nodal_pressure(params: &ReynoldsParams, core: &Core) -> Vec<f64> {
+    let (beta, pcav) = (params.bulk_modulus, params.cavitation_pressure);
+    (0..core.grid.len())
+        .map(|k| match core.grid.kind[k] {
+            NodeKind::End | NodeKind::SupplyLine => params.ambient_pressure,
+            _ => pcav + core.g[k] * beta * core.psi[k],
+        })
+        .collect()
+}
+
+/// The pressure field's integrals: film force, peak pressure and its place, cavitated area
+/// fraction, film content.
+struct PressureIntegrals {
+    force: [f64; 2],
+    max_pressure: f64,
+    max_pressure_location: [f64; 2],
+    cavitated_fraction: f64,
+    film_content: f64,
+}
+
+impl PressureIntegrals {
+    fn new(params: &ReynoldsParams, core: &Core, pressure: &[f64]) -> Self {
+        let grid = &core.grid;
+        let nz = grid.n_z;
+        let pamb = params.ambient_pressure;
+        let mut out = Self {
+            force: [0.0, 0.0],
+            max_pressure: f64::NEG_INFINITY,
+            max_pressure_location: [0.0, 0.0],
+            cavitated_fraction: 0.0,
+            film_content: 0.0,
+        };
+        let (mut cav_area, mut area) = (0.0, 0.0);
+        for i in 0..grid.n_theta {
+            let th = grid.theta(i);
+            let (c, s) = (th.cos(), th.sin());
+            for j in 0..nz {
+                let k = i * nz + j;
+                let w = grid.area_weight[k];
+                let dp = pressure[k] - pamb;
+                out.force[0] -= w * dp * c;
+                out.force[1] -= w * dp * s;
+                if pressure[k] > out.max_pressure {
+                    out.max_pressure = pressure[k];
+                    out.max_pressure_location = [th.rem_euclid(TAU), grid.z(j)];
+                }
+                area += w;
+                if grid.kind[k] == NodeKind::Unknown {
+                    out.film_content +=
+                        grid.radius * grid.d_theta * grid.dz * core.h[k] * (1.0 + core.psi[k]);
+                }
+                if core.g[k] < 0.5 {
+                    cav_area += w;
+                }
             }
         }
-        NodeKind::Groove(g) => Region::Groove(g),
-        NodeKind::SupplyLine => Region::Line,
-    };
-    let mut supply = vec![0.0; params.grooves.len()];
-    let mut leak = [0.0, 0.0];
-    let mut line = 0.0;
-    let mut account = |from: Region, to: Region, f: f64| {
+        out.cavitated_fraction = cav_area / area;
+        out
+    }
+}
+
+/// Side leakage into each end, supply flow out of each groove and out of the supply line:
+/// every face flux between two regions moved from one to the other.
+struct BoundaryFlows {
+    side_leakage: [f64; 2],
+    supply: Vec<f64>,
+    supply_line: f64,
+}
+
+impl BoundaryFlows {
+    fn new(params: &ReynoldsParams, core: &Core) -> Self {
+        let grid = &core.grid;
+        let (nt, nz) = (grid.n_theta, grid.n_z);
+        let region = |k: usize| match grid.kind[k] {
+            NodeKind::Unknown => Region::Unknown,
+            NodeKind::End if k.is_multiple_of(nz) => Region::EndLow,
+            NodeKind::End => Region::EndHigh,
+            NodeKind::Groove(g) => Region::Groove(g),
+            NodeKind::SupplyLine => Region::Line,
+        };
+        let mut flows = Self {
+            side_leakage: [0.0, 0.0],
+            supply: vec![0.0; params.grooves.len()],
+            supply_line: 0.0,
+        };
+        for i in 0..nt {
+            let ie = (i + 1) % nt;
+            for j in 0..nz {
+                let k = i * nz + j;
+                let (rk, re) = (region(k), region(ie * nz + j));
+                // θ-faces between two end nodes belong to no balance.
+                if !(matches!(rk, Region::EndLow | Region::EndHigh)
+                    && matches!(re, Region::EndLow | Region::EndHigh))
+                {
+                    flows.account(rk, re, core.flux_theta[k]);
+                }
+                if j + 1 < nz {
+                    flows.account(rk, region(k + 1), core.flux_z[k]);
+                }
+            }
+        }
+        flows
+    }
+
+    /// The flux `f` through a face from region `from` to region `to`.
+    fn account(&mut self, from: Region, to: Region, f: f64) {
         if from == to {
             return;
         }
-        match from {
-            Region::Groove(g) => supply[g as usize] += f,
-            Region::Line => line += f,
-            Region::EndLow => leak[0] -= f,
-            Region::EndHigh => leak[1] -= f,
-            Region::Unknown => {}
-        }
-        match to {
-            Region::Groove(g) => supply[g as usize] -= f,
-            Region::Line => line -= f,
-            Region::EndLow => leak[0] += f,
-            Region::EndHigh => leak[1] += f,
-            Region::Unknown => {}
-        }
-    };
-    for i in 0..nt {
-        let ie = (i + 1) % nt;
-        for j in 0..nz {
-            let k = i * nz + j;
-            let (rk, re) = (region(k), region(ie * nz + j));
-            // θ-faces between two end nodes belong to no balance.
-            if !(matches!(rk, Region::EndLow | Region::EndHigh)
-                && matches!(re, Region::EndLow | Region::EndHigh))
-            {
-                account(rk, re, core.flux_theta[k]);
-            }
-            if j + 1 < nz {
-                account(rk, region(k + 1), core.flux_z[k]);
+        for (region, sign) in [(from, 1.0), (to, -1.0)] {
+            match region {
+                Region::Groove(g) => self.supply[g as usize] += sign * f,
+                Region::Line => self.supply_line += sign * f,
+                Region::EndLow => self.side_leakage[0] -= sign * f,
+                Region::EndHigh => self.side_leakage[1] -= sign * f,
+                Region::Unknown => {}
             }
         }
     }
+}
 
-    // Recirculated flow: the θ-flux across each groove's leading edge, every non-end row.
+/// Recirculated flow: the θ-flux across each groove's leading edge, every non-end row.
+fn recirculated_flow(params: &ReynoldsParams, core: &Core, speed: f64) -> f64 {
+    let grid = &core.grid;
+    let (nt, nz) = (grid.n_theta, grid.n_z);
     let mut recirculated = 0.0;
     for g in 0..params.grooves.len() {
         let in_groove =
@@ -180,79 +250,59 @@ pub(crate) fn film_solution(
             }
         }
     }
+    recirculated
+}
 
-    // Friction and dissipation.
-    let mut tj = 0.0;
-    let mut tb = 0.0;
-    let mut power = 0.0;
-    for i in 0..nt {
-        let iw = (i + nt - 1) % nt;
-        let ie = (i + 1) % nt;
-        for j in 0..nz {
-            let k = i * nz + j;
-            let w = grid.area_weight[k];
-            let h = core.h[k];
-            let f = if core.g[k] > 0.5 {
-                1.0
-            } else {
-                (1.0 + core.psi[k]).clamp(0.0, 1.0)
-            };
-            let couette = mu[k] * speed * f / h;
-            let px = (pressure[ie * nz + j] - pressure[iw * nz + j]) / (2.0 * dx);
-            tj += params.radius * w * (-couette - 0.5 * h * px);
-            tb += params.radius * w * (couette - 0.5 * h * px);
-            power += w * couette * speed;
-            // Pressure dissipation on the east and north faces.
-            let ke = ie * nz + j;
-            let hf = 0.5 * (h + core.h[ke]);
-            let muf = 0.5 * (mu[k] + mu[ke]);
-            let gp = (pressure[ke] - pressure[k]) / dx;
-            let face_area = dx * grid.row_width(j);
-            power += hf.powi(3) / (12.0 * muf) * gp * gp * face_area;
-            if j + 1 < nz {
-                let hf = 0.5 * (h + core.h[k + 1]);
-                let muf = 0.5 * (mu[k] + mu[k + 1]);
-                let gap = grid.z_gap(j);
-                let gp = (pressure[k + 1] - pressure[k]) / gap;
-                power += hf.powi(3) / (12.0 * muf) * gp * gp * dx * gap;
+/// Friction torques on journal and bearing and the dissipated power (module docs).
+struct Shear {
+    torque_journal: f64,
+    torque_bearing: f64,
+    power_loss: f64,
+}
+
+impl Shear {
+    fn new(params: &ReynoldsParams, core: &Core, mu: &[f64], pressure: &[f64], speed: f64) -> Self {
+        let grid = &core.grid;
+        let (nt, nz) = (grid.n_theta, grid.n_z);
+        let dx = grid.radius * grid.d_theta;
+        let mut out = Self {
+            torque_journal: 0.0,
+            torque_bearing: 0.0,
+            power_loss: 0.0,
+        };
+        for i in 0..nt {
+            let iw = (i + nt - 1) % nt;
+            let ie = (i + 1) % nt;
+            for j in 0..nz {
+                let k = i * nz + j;
+                let w = grid.area_weight[k];
+                let h = core.h[k];
+                let f = if core.g[k] > 0.5 {
+                    1.0
+                } else {
+                    (1.0 + core.psi[k]).clamp(0.0, 1.0)
+                };
+                let couette = mu[k] * speed * f / h;
+                let px = (pressure[ie * nz + j] - pressure[iw * nz + j]) / (2.0 * dx);
+                out.torque_journal += params.radius * w * (-couette - 0.5 * h * px);
+                out.torque_bearing += params.radius * w * (couette - 0.5 * h * px);
+                out.power_loss += w * couette * speed;
+                // Pressure dissipation on the east and north faces.
+                let ke = ie * nz + j;
+                let hf = 0.5 * (h + core.h[ke]);
+                let muf = 0.5 * (mu[k] + mu[ke]);
+                let gp = (pressure[ke] - pressure[k]) / dx;
+                let face_area = dx * grid.row_width(j);
+                out.power_loss += hf.powi(3) / (12.0 * muf) * gp * gp * face_area;
+                if j + 1 < nz {
+                    let hf = 0.5 * (h + core.h[k + 1]);
+                    let muf = 0.5 * (mu[k] + mu[k + 1]);
+                    let gap = grid.z_gap(j);
+                    let gp = (pressure[k + 1] - pressure[k]) / gap;
+                    out.power_loss += hf.powi(3) / (12.0 * muf) * gp * gp * dx * gap;
+                }
             }
         }
-    }
-
-    let shape = (nt, nz);
-    let to_arr = |v: Vec<f64>| Array2::from_shape_vec(shape, v).expect("grid shape");
-    let density: Vec<f64> = core.psi.iter().map(|p| 1.0 + p).collect();
-    let fraction: Vec<f64> = density
-        .iter()
-        .zip(&core.g)
-        .map(|(&d, &g)| if g > 0.5 { 1.0 } else { d })
-        .collect();
-    FilmSolution {
-        film_force: force,
-        load_capacity,
-        attitude_angle,
-        min_film_thickness,
-        min_film_location,
-        max_pressure: pmax,
-        max_pressure_location: pmax_at,
-        cavitated_fraction: cav_area / area,
-        film_content: content,
-        side_leakage: leak,
-        supply_flow: supply,
-        supply_line_flow: line,
-        recirculated_flow: recirculated,
-        friction_torque_journal: tj,
-        friction_torque_bearing: tb,
-        power_loss: power,
-        iterations: core.iterations,
-        single_pivots: core.single_pivots,
-        linear_iterations: core.linear_iterations,
-        residual: core.residual,
-        theta: (0..nt).map(|i| grid.theta(i)).collect(),
-        z: (0..nz).map(|j| grid.z(j)).collect(),
-        pressure: to_arr(pressure),
-        density_ratio: to_arr(density),
-        film_fraction: to_arr(fraction),
-        switch: to_arr(core.g.clone()),
+        out
     }
 }
