@@ -181,6 +181,16 @@ pub fn mineral_oil_density(temperature: f64) -> f64 {
 
 /// Kinematic viscosity (mm²/s) at `temperature` (°C) of the Ubbelohde–Walther line (ASTM
 /// D341) through (t1, nu1) and (t2, nu2) (°C, mm²/s).
+///
+/// ```
+/// use jbearing_solvers::viscosity::walther_viscosity;
+///
+/// // The line through an ISO VG 46 oil's data sheet points (46 mm²/s at 40 °C, 6.8 at 100 °C)
+/// // passes through them and thins the oil monotonically in between.
+/// let nu = |t| walther_viscosity(40.0, 46.0, 100.0, 6.8, t);
+/// assert!((nu(40.0) - 46.0).abs() < 1e-9 && (nu(100.0) - 6.8).abs() < 1e-9);
+/// assert!(nu(40.0) > nu(60.0) && nu(60.0) > nu(80.0) && nu(80.0) > nu(100.0));
+/// ```
 pub fn walther_viscosity(t1: f64, nu1: f64, t2: f64, nu2: f64, temperature: f64) -> f64 {
     let y = |nu: f64| (nu + 0.7).log10().log10();
     let x = |t: f64| (t + 273.15).log10();

@@ -76,6 +76,21 @@ pub fn half_film_pressure(params: &ClosedFormParams, motion: &JournalMotion, psi
 }
 
 /// (F_r, F_t) of the full film (\[Flores2009\] eqs. 10–11).
+///
+/// ```
+/// use jbearing_solvers::closed_form::{long, ClosedFormParams, JournalMotion};
+/// use std::f64::consts::PI;
+///
+/// // Sommerfeld's long bearing: S = μN/P (R/c)² = (2 + ε²)√(1 − ε²) / (12π²ε), load along the
+/// // tangent only (N in rev/s, P = W/(LD)).
+/// let params = ClosedFormParams { radius: 0.05, length: 0.2, radial_clearance: 50e-6, viscosity: 0.01 };
+/// let (eps, omega) = (0.5, 200.0);
+/// let [fr, ft] = long::full_film_force(&params, &JournalMotion::steady(eps, 0.0, omega));
+/// let p = ft.abs() / (params.length * 2.0 * params.radius);
+/// let sommerfeld = params.viscosity * omega / (2.0 * PI) / p * (0.05f64 / 50e-6).powi(2);
+/// let expected = (2.0 + eps * eps) * (1.0 - eps * eps).sqrt() / (12.0 * PI * PI * eps);
+/// assert!(fr == 0.0 && (sommerfeld - expected).abs() < 1e-12 * expected);
+/// ```
 pub fn full_film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f64; 2] {
     let eps = motion.eccentricity_ratio;
     let s = 1.0 - eps * eps;

@@ -341,6 +341,26 @@ pub enum ClosedFormError {
 }
 
 /// The film force of `model` for the journal state `motion`.
+///
+/// ```
+/// use jbearing_solvers::closed_form::{film_force, ClosedFormModel, ClosedFormParams, JournalMotion};
+/// use std::f64::consts::PI;
+///
+/// let params = ClosedFormParams { radius: 0.02, length: 0.01, radial_clearance: 40e-6, viscosity: 0.02 };
+/// let (eps, omega) = (0.6, 300.0);
+/// let steady = JournalMotion::steady(eps, 0.0, omega);
+/// // Ocvirk's short bearing (half film): |F| = μUL³/(4c²) ε √(16ε² + π²(1−ε²)) / (1−ε²)², U = Rω.
+/// let gumbel = film_force(ClosedFormModel::ShortGumbel, &params, &steady)?;
+/// let s = 1.0 - eps * eps;
+/// let ocvirk = params.viscosity * params.radius * omega * params.length.powi(3)
+///     / (4.0 * 40e-6f64.powi(2)) * eps * (16.0 * eps * eps + PI * PI * s).sqrt() / (s * s);
+/// assert!((gumbel.radial.hypot(gumbel.tangential) - ocvirk).abs() < 1e-9 * ocvirk);
+/// // The full (Sommerfeld) short film: no radial force, twice the half film's tangential one.
+/// let full = film_force(ClosedFormModel::ShortSommerfeld, &params, &steady)?;
+/// assert!(full.radial.abs() < 1e-9 * full.tangential.abs());
+/// assert!((full.tangential - 2.0 * gumbel.tangential).abs() < 1e-9 * full.tangential.abs());
+/// # Ok::<(), jbearing_solvers::closed_form::ClosedFormError>(())
+/// ```
 pub fn film_force(
     model: ClosedFormModel,
     params: &ClosedFormParams,

@@ -40,6 +40,20 @@ pub fn k_parameter(motion: &JournalMotion) -> f64 {
 }
 
 /// (F_r, F_t) of \[Flores2009\] eqs. 14–17 (with the corrections of the module docs).
+///
+/// ```
+/// use jbearing_solvers::closed_form::{long, pinkus_sternlicht, ClosedFormParams, JournalMotion};
+///
+/// let params = ClosedFormParams { radius: 0.01, length: 0.04, radial_clearance: 0.2e-3, viscosity: 0.4 };
+/// let at_rest = JournalMotion::steady(0.7, 1.0, 500.0);
+/// // At ε̇ = 0 the moving film ends sit at the Gumbel ends: the long half film's force.
+/// let [fr, ft] = pinkus_sternlicht::film_force(&params, &at_rest);
+/// let [gr, gt] = long::half_film_force(&params, &at_rest);
+/// assert!((fr - gr).abs() < 1e-9 * gr.abs() && (ft - gt).abs() < 1e-9 * gt.abs());
+/// // The squeeze part opposes the motion: moving outwards (ε̇ > 0) adds an inward force.
+/// let outwards = JournalMotion { eccentricity_ratio_rate: 50.0, ..at_rest };
+/// assert!(pinkus_sternlicht::film_force(&params, &outwards)[0] < fr);
+/// ```
 pub fn film_force(params: &ClosedFormParams, motion: &JournalMotion) -> [f64; 2] {
     let eps = motion.eccentricity_ratio;
     let ed = motion.eccentricity_ratio_rate;

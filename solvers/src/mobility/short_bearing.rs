@@ -227,6 +227,20 @@ fn sommerfeld_gamma(theta: f64, eps: f64) -> f64 {
 
 /// Booker's integrals (I₃^{02}, I₃^{11}, I₃^{20}) over θ' ∈ [θ1, θ2] (θ1 < θ2 ≤ θ1 + 2π) in the
 /// frame of ε, exactly (Sommerfeld substitution, see the module docs).
+///
+/// ```
+/// use jbearing_solvers::mobility::short_bearing::booker_integrals;
+/// use std::f64::consts::{PI, TAU};
+///
+/// // Over a whole turn: ∫ sin²/(1 + ε cos)³ = π/(1 − ε²)^{3/2}, ∫ sin cos/(…)³ = 0,
+/// // ∫ cos²/(1 + ε cos)³ = π (1 + 2ε²)/(1 − ε²)^{5/2}.
+/// let eps = 0.8;
+/// let s = 1.0 - eps * eps;
+/// let [i02, i11, i20] = booker_integrals(eps, 0.3, 0.3 + TAU);
+/// assert!((i20 - PI / s.powf(1.5)).abs() < 1e-12 * i20);
+/// assert!(i11.abs() < 1e-12 * i20);
+/// assert!((i02 - PI * (1.0 + 2.0 * eps * eps) / s.powf(2.5)).abs() < 1e-12 * i02);
+/// ```
 pub fn booker_integrals(eps: f64, theta1: f64, theta2: f64) -> [f64; 3] {
     let s = 1.0 - eps * eps;
     let g1 = sommerfeld_gamma(theta1, eps);

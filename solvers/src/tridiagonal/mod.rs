@@ -337,6 +337,18 @@ impl LineWorkspace {
 /// `sub[0]` and `sup[m-1]` are ignored. The solution goes to `x`; the inputs are not modified.
 /// Every pivot d'_i = d_i − b_i u_{i-1} is checked (see the module docs); a non-finite unknown
 /// is reported, never returned.
+///
+/// ```
+/// use jbearing_solvers::tridiagonal::{thomas_solve, LineWorkspace};
+///
+/// // −x_{i−1} + 4 x_i − x_{i+1} = b_i with the solution x = (1, 2, 3, 4) built into b.
+/// let (sub, diag, sup) = ([0.0, -1.0, -1.0, -1.0], [4.0; 4], [-1.0, -1.0, -1.0, 0.0]);
+/// let rhs = [4.0 - 2.0, -1.0 + 8.0 - 3.0, -2.0 + 12.0 - 4.0, -3.0 + 16.0];
+/// let mut x = [0.0; 4];
+/// thomas_solve(&sub, &diag, &sup, &rhs, &mut x, &mut LineWorkspace::with_len(4))?;
+/// assert!(x.iter().zip([1.0, 2.0, 3.0, 4.0]).all(|(a, b)| (a - b).abs() < 1e-14));
+/// # Ok::<(), jbearing_solvers::tridiagonal::TridiagonalError>(())
+/// ```
 pub fn thomas_solve(
     sub: &[f64],
     diag: &[f64],
@@ -378,6 +390,19 @@ pub fn thomas_solve(
 /// `sub[0]` is the corner entry of row 0 (column m-1) and `sup[m-1]` the corner entry of row
 /// m-1 (column 0). The derivation and the evaluation order are in the module documentation.
 /// The solution goes to `x`; the inputs are not modified.
+///
+/// ```
+/// use jbearing_solvers::tridiagonal::{cyclic_thomas_solve, LineWorkspace};
+///
+/// // The periodic line −x_{i−1} + 3 x_i − x_{i+1} = b_i (indices mod 5), x = (1, −1, 2, 0, 5).
+/// let want = [1.0, -1.0, 2.0, 0.0, 5.0];
+/// let m = want.len();
+/// let rhs: Vec<f64> = (0..m).map(|i| 3.0 * want[i] - want[(i + m - 1) % m] - want[(i + 1) % m]).collect();
+/// let mut x = vec![0.0; m];
+/// cyclic_thomas_solve(&[-1.0; 5], &[3.0; 5], &[-1.0; 5], &rhs, &mut x, &mut LineWorkspace::with_len(m))?;
+/// assert!(x.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-13));
+/// # Ok::<(), jbearing_solvers::tridiagonal::TridiagonalError>(())
+/// ```
 pub fn cyclic_thomas_solve(
     sub: &[f64],
     diag: &[f64],
