@@ -11,7 +11,7 @@
 //! frame; the reported orbit is the journal centre in that frame (m).
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use jbearing_solvers::mobility::{
     BookerShortBearing, ExactShortBearing, MobilityError, MobilityMap, MobilityMapParams,
@@ -60,6 +60,12 @@ pub trait RunObserver: Sync {
     fn method_done(&self, _case: &str, _method: Method) {}
     /// A warning about the case (before the solve).
     fn warning(&self, _case: &str, _warning: &CaseWarning) {}
+    /// Asked after every time step of the rigorous method: `true` stops the case with an
+    /// [`InverseError::Interrupted`](jbearing_solvers::inverse::InverseError::Interrupted)
+    /// error naming the step (the Python package's Ctrl-C).
+    fn stop_requested(&self) -> bool {
+        false
+    }
 }
 
 /// An observer that ignores everything.
@@ -654,7 +660,13 @@ struct InverseAdapter<'a> {
     newton_iterations: usize,
     steps: usize,
     worst_residual: f64,
+    /// When progress was last passed on (at most every [`PROGRESS_INTERVAL`], and at each
+    /// cycle's last step).
+    last_progress: Option<Instant>,
 }
+
+/// The shortest interval between two per-step progress events of the rigorous method.
+const PROGRESS_INTERVAL: Duration = Duration::from_millis(100);
 
 impl<'a> InverseAdapter<'a> {
     fn new(case: &'a str, observer: &'a dyn RunObserver) -> Self {
@@ -664,6 +676,7 @@ impl<'a> InverseAdapter<'a> {
             newton_iterations: 0,
             steps: 0,
             worst_residual: 0.0,
+            last_progress: None,
         }
     }
 }
@@ -693,7 +706,11 @@ impl InverseObserver for InverseAdapter<'_> {
             p.newton_iterations,
             p.residual
         );
-        if p.step.is_multiple_of(10) || p.step == p.steps {
+        let due = self
+            .last_progress
+            .is_none_or(|t| t.elapsed() >= PROGRESS_INTERVAL);
+        if due || p.step == p.steps {
+            self.last_progress = Some(Instant::now());
             self.observer.progress(
                 self.case,
                 Method::Rigorous,
@@ -719,6 +736,9 @@ impl InverseObserver for InverseAdapter<'_> {
         self.worst_residual = 0.0;
         self.observer
             .cycle_done(self.case, Method::Rigorous, cycle, eccentricity_change);
+    }
+    fn stop_requested(&mut self) -> bool {
+        self.observer.stop_requested()
     }
 }
 

@@ -16,10 +16,14 @@ builds xarray objects with the names, units and dimensions of the CLI's ``CASE.h
 - :func:`steady` solves the steady finite-difference Reynolds (JFO) film under a constant load.
 
 Units: SI everywhere (m, Pa s, N, rad/s, Pa); crank angles in degrees, as in the files.
-Solves release the GIL; ``progress`` is a callable receiving one dict per event, or ``True``
-for a tqdm bar. Errors are :class:`JbearingError` subclasses whose attributes carry the Rust
-error variant's fields and those of its sources (``kind`` is the variant, ``details`` the whole
-parsed error; e.g. ``CaseError.line``, ``SolverError.force_residual``).
+Solves release the GIL; ``progress`` is a callable receiving one dict per event (at most
+every 0.1 s within a cycle, and at each cycle's end), or ``True`` for a tqdm bar. Ctrl-C stops
+a running solve with ``KeyboardInterrupt`` after its current time step; an exception raised by
+the progress callable stops it the same way and is re-raised. Errors are
+:class:`JbearingError` subclasses whose attributes carry the Rust error variant's fields and
+those of its sources (``kind`` is the variant, ``variants`` the chain of variants outermost
+first, ``details`` the whole parsed error; e.g. ``CaseError.line``,
+``SolverError.force_residual``, ``SolverError.min_film_thickness`` of a film collapse).
 """
 
 from __future__ import annotations
@@ -189,6 +193,12 @@ def _enrich(err: BaseException) -> BaseException:
         return err
     if isinstance(parsed, dict):
         err.details = parsed
+        # The variants of the error and of its sources, outermost first.
+        variants, node = [], parsed
+        while isinstance(node, dict) and "variant" in node:
+            variants.append(node["variant"])
+            node = next((v for v in node.values() if isinstance(v, dict) and "variant" in v), None)
+        err.variants = variants
         fields: dict[str, Any] = {}
         _flatten(parsed, fields)
         for k, v in fields.items():

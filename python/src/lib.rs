@@ -21,6 +21,8 @@
 
 use std::path::PathBuf;
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 use jbearing::budget::Limits;
 use jbearing::case::{Case, CaseError, CaseWarning};
@@ -128,18 +130,37 @@ fn reynolds_error(py: Python<'_>, err: &ReynoldsError) -> PyErr {
 /// Progress of a case to an optional Python callable, called (with the GIL taken back) with one
 /// dict per event: `{"event": "step" | "cycle" | "method_started" | "method_done" | "warning",
 /// "case", "method", "cycle", "step", "steps", "residual", "message"}`. An exception raised by
-/// the callable is kept and raised when the solve returns (the solve itself runs to its end).
+/// the callable is kept, stops the rigorous method after its current step, and is raised when
+/// the solve returns. Between steps the solve also runs Python's signal handlers (at most every
+/// [`SIGNAL_INTERVAL`]), so Ctrl-C stops it with `KeyboardInterrupt`.
 struct PyProgress {
     callback: Option<Py<PyAny>>,
     error: Mutex<Option<PyErr>>,
+    /// Set once an exception is kept: the solve is asked to stop.
+    stop: AtomicBool,
+    /// When the signal handlers last ran.
+    signals_checked: Mutex<Instant>,
 }
+
+/// How often a running solve lets Python handle signals (Ctrl-C).
+const SIGNAL_INTERVAL: Duration = Duration::from_millis(50);
 
 impl PyProgress {
     fn new(callback: Option<Py<PyAny>>) -> Self {
         Self {
             callback,
             error: Mutex::new(None),
+            stop: AtomicBool::new(false),
+            signals_checked: Mutex::new(Instant::now()),
         }
+    }
+
+    /// Keep the first exception and ask the solve to stop.
+    fn keep(&self, slot: &mut Option<PyErr>, err: PyErr) {
+        if slot.is_none() {
+            *slot = Some(err);
+        }
+        self.stop.store(true, Ordering::Relaxed);
     }
 
     fn send(&self, fill: impl FnOnce(&Bound<'_, PyDict>) -> PyResult<()>) {
@@ -158,7 +179,7 @@ impl PyProgress {
                 Ok::<_, PyErr>(())
             })();
             if let Err(e) = r {
-                *slot = Some(e);
+                self.keep(&mut slot, e);
             }
         });
     }
@@ -173,6 +194,25 @@ impl PyProgress {
 }
 
 impl RunObserver for PyProgress {
+    fn stop_requested(&self) -> bool {
+        if self.stop.load(Ordering::Relaxed) {
+            return true;
+        }
+        let mut checked = self
+            .signals_checked
+            .lock()
+            .unwrap_or_else(|p| p.into_inner());
+        if checked.elapsed() < SIGNAL_INTERVAL {
+            return false;
+        }
+        *checked = Instant::now();
+        // The handlers run on the main thread only (elsewhere this is a no-op).
+        if let Err(e) = Python::attach(|py| py.check_signals()) {
+            let mut slot = self.error.lock().unwrap_or_else(|p| p.into_inner());
+            self.keep(&mut slot, e);
+        }
+        self.stop.load(Ordering::Relaxed)
+    }
     fn method_started(&self, case: &str, method: Method) {
         self.send(|d| {
             d.set_item("event", "method_started")?;

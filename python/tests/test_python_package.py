@@ -280,3 +280,80 @@ def test_solves_release_the_gil():
     # gives a tick count of the order of the solve's milliseconds; ask for a tenth of it.
     assert elapsed > 0.05, "solve too short to tell"
     assert ticks - ticks_before > 0.1 * elapsed / 0.001, (ticks - ticks_before, elapsed)
+
+
+# The compressor-like bearing of the inverse tests, for the interruption and error tests below.
+_BEARING = dict(
+    radius=0.025, length=0.02, clearance=4e-5, viscosity=0.02, feed_pressure=2e5,
+    grooves=[dict(center_angle=math.pi / 2, circumferential_length=0.006, axial_width=0.006)],
+)
+_OMEGA = 1800 * 2 * math.pi / 60
+
+
+def test_ctrl_c_stops_a_running_solve():
+    """SIGINT during a solve (the GIL released, no progress callable) raises KeyboardInterrupt
+    within a step or two instead of after the run. The solve asked for is far longer than the
+    wait: 400 cycles of 360 steps with a periodicity tolerance it cannot meet early (a
+    rotating load), ~10^5 film steps, minutes of work."""
+    import os
+    import signal
+
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    angles = np.arange(0.0, 360.0, 5.0)
+    started = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            jb.inverse_cycle(
+                crank_angle=angles, load_x=800.0 * np.cos(np.radians(angles)),
+                load_y=800.0 * np.sin(np.radians(angles)), crank_speed=_OMEGA, grid=(48, 8),
+                steps_per_cycle=360, max_cycles=400,
+                options={"solver": {"periodicity_tolerance": 1e-300}}, **_BEARING,
+            )
+    finally:
+        timer.cancel()
+    # 0.5 s to the signal, then at most one signal interval (50 ms) and one film step.
+    assert time.monotonic() - started < 5.0
+
+
+def test_a_progress_callable_that_raises_stops_the_solve():
+    """An exception in the progress callable stops the rigorous method after the step it was
+    raised in, and is the exception the caller sees."""
+
+    class Enough(Exception):
+        pass
+
+    steps = []
+
+    def progress(event):
+        if event["event"] == "step":
+            steps.append(event)
+            raise Enough
+
+    with pytest.raises(Enough):
+        jb.inverse_cycle(
+            crank_angle=[0.0], load_x=[-1500.0], load_y=[0.0], crank_speed=_OMEGA,
+            grid=(48, 8), steps_per_cycle=36, max_cycles=400,
+            options={"solver": {"periodicity_tolerance": 1e-300}}, progress=progress,
+            **_BEARING,
+        )
+    assert len(steps) == 1
+
+
+def test_a_load_the_film_cannot_carry_names_the_step_in_python():
+    """The rigorous method's collapse error reaches Python with the solver's numbers: the crank
+    angle and cycle of the step, the eccentricity and the minimum film thickness there, which
+    agree with each other (h_min = c (1 - |eps|) for an aligned journal)."""
+    with pytest.raises(jb.SolverError) as e:
+        jb.inverse_cycle(
+            crank_angle=[0.0, 120.0, 240.0], load_x=[-1e3, -5e6, -1e3], load_y=[0.0, 0.0, 0.0],
+            crank_speed=_OMEGA, grid=(48, 8), steps_per_cycle=36, max_cycles=3, **_BEARING,
+        )
+    err = e.value
+    assert err.kind == "Rigorous", err.details
+    assert err.source_variant == "Inverse", err.details
+    # The whole chain of variants, outermost first (RunError, RigorousError, InverseError).
+    assert err.variants == ["Rigorous", "Inverse", "Collapse"], err.details
+    assert isinstance(err.cycle, int) and 0.0 <= err.crank_angle_deg <= 360.0
+    assert err.min_film_thickness == pytest.approx(4e-5 * (1.0 - err.eccentricity), rel=1e-9)
+    assert f"{err.crank_angle_deg:.2f}°" in str(err)

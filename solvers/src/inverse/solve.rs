@@ -35,6 +35,21 @@ impl Where {
         }
     }
 
+    /// [`InverseError::Interrupted`] here when the observer asks to stop.
+    fn stop_if_requested<O: InverseObserver + ?Sized>(
+        self,
+        observer: &mut O,
+    ) -> Result<(), InverseError> {
+        if observer.stop_requested() {
+            return Err(InverseError::Interrupted {
+                time: self.time,
+                crank_angle_deg: self.crank_angle_deg,
+                cycle: self.cycle,
+            });
+        }
+        Ok(())
+    }
+
     /// Newton could not converge this step.
     fn newton_failed(self, iterations: usize, residual: f64, eps: [f64; 2]) -> InverseError {
         InverseError::NewtonFailed {
@@ -133,6 +148,40 @@ where
 /// start (the cycles continue until the periodicity test holds; the first cycle is never
 /// periodic), only the number of cycles does. The start must come from the same film model,
 /// grid and time step.
+///
+/// ```
+/// use jbearing_solvers::prelude::*;
+/// use jbearing_solvers::inverse::solve_inverse_from;
+/// use jbearing_solvers::load::FnLoad;
+/// use std::f64::consts::TAU;
+///
+/// // A rotating load; then the same bearing with an oil 10 % thinner, started where the first
+/// // solve ended: no run-in, and the periodic orbit in no more cycles than from the centre.
+/// let omega = 300.0;
+/// let history = OperatingHistory {
+///     load: FnLoad {
+///         period: TAU / omega,
+///         load: |t: f64| [-800.0 * (omega * t).cos(), -800.0 * (omega * t).sin() - 400.0],
+///     },
+///     journal_speed: omega,
+///     bearing_speed: 0.0,
+///     feed_pressures: vec![],
+/// };
+/// let settings = InverseParams { step_deg: 5.0, ..Default::default() };
+/// let film = |mu| {
+///     let params = ClosedFormParams { radius: 0.02, length: 0.01, radial_clearance: 40e-6, viscosity: mu };
+///     ClosedFormFilm::new(ClosedFormModel::ShortGumbelMovingFilm, params, TimeScheme::Bdf2)
+/// };
+/// let (_, end) = solve_inverse_from(&settings, &history, &mut film(0.02)?, &mut NoObserver, None)?;
+/// let (warm, _) = solve_inverse_from(&settings, &history, &mut film(0.018)?, &mut NoObserver, Some(end))?;
+/// let (cold, _) = solve_inverse_from(&settings, &history, &mut film(0.018)?, &mut NoObserver, None)?;
+/// assert!(warm.info.periodic && warm.info.run_in_steps == 0);
+/// assert!(warm.info.cycles <= cold.info.cycles);
+/// // The periodic answer does not depend on the start (to the periodicity tolerance).
+/// let (a, b) = (warm.summary.max_eccentricity, cold.summary.max_eccentricity);
+/// assert!((a - b).abs() < 10.0 * settings.periodicity_tolerance, "{a} vs {b}");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn solve_inverse_from<F, L, O>(
     params: &InverseParams,
     load: &L,
@@ -147,32 +196,140 @@ where
 {
     let start = Instant::now();
     validate(params)?;
-    let period = load.period();
-    if !(period.is_finite() && period > 0.0) {
-        return Err(InverseError::InvalidParameter {
-            name: "load period",
-            value: period,
-        });
-    }
-    let cycle_deg = load.cycle_deg();
-    if !(cycle_deg.is_finite() && cycle_deg > 0.0) {
-        return Err(InverseError::InvalidParameter {
-            name: "cycle_deg",
-            value: cycle_deg,
-        });
-    }
-    let n = ((cycle_deg / params.step_deg).round() as usize).max(4);
-    let dt = period / n as f64;
-    let run_in = if params.run_in_steps > 0 {
-        params.run_in_steps
-    } else {
-        (n / 4).max(8)
+    let warm = start_from.is_some();
+    let grid = CycleGrid::new(params, load, warm)?;
+    let mut stepper = Stepper {
+        params,
+        w_ref: reference_load(params, load, &grid)?,
+        jac: Jacobian {
+            m: [[0.0; 2]; 2],
+            valid: false,
+        },
+        stats: Stats::default(),
     };
+    let mut orbit = match start_from {
+        Some(s) => Orbit {
+            eps: s.eccentricity_ratio,
+            prev: s.previous[0],
+            prev2: s.previous[1],
+            state: s.state,
+        },
+        None => Orbit {
+            eps: [0.0; 2],
+            prev: [0.0; 2],
+            prev2: [0.0; 2],
+            state: film.initial_state([0.0; 2]),
+        },
+    };
+    orbit.run_in(&mut stepper, film, load, &grid, observer)?;
+    let outcome = orbit.cycles_until_periodic(&mut stepper, film, load, &grid, observer)?;
 
-    // Reference load: 1 % of the peak over the cycle unless given.
+    let warning = (!outcome.periodic).then_some(InverseWarning::NotPeriodic {
+        cycles: outcome.cycles,
+        eccentricity_change: outcome.eccentricity_change,
+        eccentricity_tolerance: params.periodicity_tolerance,
+        film_state_change: outcome.film_state_change,
+        film_state_tolerance: params.film_state_tolerance,
+    });
+    let stats = &stepper.stats;
+    let info = InverseInfo {
+        steps_per_cycle: grid.steps,
+        time_step: grid.dt,
+        period: grid.period,
+        cycle_deg: grid.cycle_deg,
+        run_in_steps: grid.run_in,
+        cycles: outcome.cycles,
+        periodic: outcome.periodic,
+        eccentricity_change: outcome.eccentricity_change,
+        film_state_change: outcome.film_state_change,
+        warning,
+        reference_load: stepper.w_ref,
+        newton_iterations: stats.newton,
+        max_newton_iterations_per_step: stats.max_newton,
+        film_evaluations: stats.evaluations,
+        jacobian_evaluations: stats.jacobians,
+        sweep_iterations: stats.sweeps,
+        stalled_steps: stats.stalled,
+        max_stalled_residual: stats.max_stalled,
+        split_steps: stats.split,
+        wall_time: start.elapsed().as_secs_f64(),
+    };
+    let end = InverseStart {
+        eccentricity_ratio: orbit.eps,
+        previous: [orbit.prev, orbit.prev2],
+        state: orbit.state,
+    };
+    let solution = InverseSolution {
+        summary: summarize(&outcome.records),
+        steps: outcome.records,
+        fields: outcome.snapshots,
+        info,
+    };
+    Ok((solution, end))
+}
+
+/// The time grid of one solve: N steps of Δt per load cycle and the run-in length.
+struct CycleGrid {
+    /// Load period τ [s].
+    period: f64,
+    /// Crank angle of one load cycle [°] (720 for a four-stroke cycle).
+    cycle_deg: f64,
+    /// Steps per cycle N.
+    steps: usize,
+    /// Δt = τ / N [s].
+    dt: f64,
+    /// Run-in steps (0 from a given start).
+    run_in: usize,
+}
+
+impl CycleGrid {
+    /// N = cycle_deg / step_deg rounded (at least 4); run-in N/4 steps (at least 8) unless
+    /// given, none when the solve starts from an earlier one.
+    fn new<L: LoadHistory + ?Sized>(
+        params: &InverseParams,
+        load: &L,
+        warm: bool,
+    ) -> Result<Self, InverseError> {
+        let period = load.period();
+        if !(period.is_finite() && period > 0.0) {
+            return Err(InverseError::InvalidParameter {
+                name: "load period",
+                value: period,
+            });
+        }
+        let cycle_deg = load.cycle_deg();
+        if !(cycle_deg.is_finite() && cycle_deg > 0.0) {
+            return Err(InverseError::InvalidParameter {
+                name: "cycle_deg",
+                value: cycle_deg,
+            });
+        }
+        let steps = ((cycle_deg / params.step_deg).round() as usize).max(4);
+        let run_in = match (warm, params.run_in_steps) {
+            (true, _) => 0,
+            (false, 0) => (steps / 4).max(8),
+            (false, given) => given,
+        };
+        Ok(Self {
+            period,
+            cycle_deg,
+            steps,
+            dt: period / steps as f64,
+            run_in,
+        })
+    }
+}
+
+/// The reference load W_ref of the residual scale: [`InverseParams::reference_load`], or 1 % of
+/// the peak load over the cycle when that is 0. Refuses a load that is not finite at a step.
+fn reference_load<L: LoadHistory + ?Sized>(
+    params: &InverseParams,
+    load: &L,
+    grid: &CycleGrid,
+) -> Result<f64, InverseError> {
     let mut peak: f64 = 0.0;
-    for i in 0..n {
-        let t = i as f64 * dt;
+    for i in 0..grid.steps {
+        let t = i as f64 * grid.dt;
         let w = load.load(t);
         if !(w[0].is_finite() && w[1].is_finite()) {
             return Err(InverseError::NonFiniteLoad {
@@ -193,192 +350,55 @@ where
             value: w_ref,
         });
     }
+    Ok(w_ref)
+}
 
-    let mut stepper = Stepper {
-        params,
-        w_ref,
-        jac: Jacobian {
-            m: [[0.0; 2]; 2],
-            valid: false,
-        },
-        stats: Stats::default(),
+/// Speeds and feed pressures at `t`, refused when not finite.
+fn conditions_at<L: LoadHistory + ?Sized>(
+    load: &L,
+    t: f64,
+) -> Result<OperatingConditions, InverseError> {
+    let c = OperatingConditions {
+        journal_speed: load.journal_speed(t),
+        bearing_speed: load.bearing_speed(t),
+        feed_pressures: load.feed_pressures(t),
     };
-    let conditions_at = |t: f64| -> Result<OperatingConditions, InverseError> {
-        let c = OperatingConditions {
-            journal_speed: load.journal_speed(t),
-            bearing_speed: load.bearing_speed(t),
-            feed_pressures: load.feed_pressures(t),
-        };
-        if !(c.journal_speed.is_finite()
-            && c.bearing_speed.is_finite()
-            && c.feed_pressures.iter().all(|p| p.is_finite()))
-        {
-            return Err(InverseError::NonFiniteLoad {
-                quantity: "speed or feed pressure",
-                time: t,
-            });
-        }
-        Ok(c)
-    };
-
-    // ---- run-in: from ε = 0, full film, quasi-load ramped to W(0) at the conditions of t = 0
-    // (none from a given start).
-    let warm = start_from.is_some();
-    let mut orbit = match start_from {
-        Some(s) => Orbit {
-            eps: s.eccentricity_ratio,
-            prev: s.previous[0],
-            prev2: s.previous[1],
-            state: s.state,
-        },
-        None => Orbit {
-            eps: [0.0; 2],
-            prev: [0.0; 2],
-            prev2: [0.0; 2],
-            state: film.initial_state([0.0; 2]),
-        },
-    };
-    let run_in = if warm { 0 } else { run_in };
-    let w0 = load.load(0.0);
-    let cond0 = conditions_at(0.0)?;
-    // The ramp as a function of time (also at the midpoints of split steps).
-    let ramp = |tt: f64| {
-        let s = smoothstep(((run_in as f64 + tt / dt) / run_in as f64).clamp(0.0, 1.0));
-        Ok(([s * w0[0], s * w0[1]], cond0.clone()))
-    };
-    for k in 1..=run_in {
-        let t = -((run_in - k) as f64) * dt;
-        // Errors of the run-in give the crank angle within the cycle (see `When`).
-        let at = Where {
+    if !(c.journal_speed.is_finite()
+        && c.bearing_speed.is_finite()
+        && c.feed_pressures.iter().all(|p| p.is_finite()))
+    {
+        return Err(InverseError::NonFiniteLoad {
+            quantity: "speed or feed pressure",
             time: t,
-            crank_angle_deg: load.crank_angle_deg(t).rem_euclid(load.cycle_deg()),
-            cycle: 0,
-        };
-        let step = orbit.march_step(&mut stepper, film, dt, &ramp, at, false)?;
-        observer.on_step(&InverseProgress {
-            phase: InversePhase::RunIn,
-            step: k,
-            steps: run_in,
-            max_cycles: params.max_cycles,
-            time: t,
-            crank_angle_deg: at.crank_angle_deg,
-            eccentricity_ratio: orbit.eps,
-            residual: step.accepted.residual,
-            newton_iterations: step.accepted.iterations,
         });
     }
+    Ok(c)
+}
 
-    // ---- cycles until periodic.
-    let mut previous: Option<Vec<[f64; 2]>> = None;
-    let mut records: Vec<InverseStep> = Vec::with_capacity(n);
-    let mut snapshots: Vec<FieldSnapshot> = Vec::new();
-    let mut eccentricity_change = f64::INFINITY;
-    let mut film_state_change = 0.0;
-    let mut periodic = false;
-    let mut cycles = 0;
-    let drive = |tt: f64| {
-        let w = load.load(tt);
-        if !(w[0].is_finite() && w[1].is_finite()) {
-            return Err(InverseError::NonFiniteLoad {
-                quantity: "load",
-                time: tt,
-            });
-        }
-        Ok((w, conditions_at(tt)?))
-    };
-    for cycle in 1..=params.max_cycles {
-        cycles = cycle;
-        records.clear();
-        snapshots.clear();
-        let t_c = (cycle - 1) as f64 * period;
-        let state_start = orbit.state.clone();
-        for i in 0..n {
-            let tau = (i + 1) as f64 * dt;
-            let t = t_c + tau;
-            let (w, _) = drive(t)?;
-            let crank = load.crank_angle_deg(tau);
-            let at = Where {
-                time: t,
-                crank_angle_deg: crank,
-                cycle,
-            };
-            // Steps end at crank angles (i + 1)·Δ: capturing at the ends of strides puts the
-            // snapshots at stride·Δ, 2·stride·Δ, …, including the cycle's end (= its start).
-            let capture = params.field_stride > 0 && (i + 1) % params.field_stride == 0;
-            let step = orbit.march_step(&mut stepper, film, dt, &drive, at, capture)?;
-            if let Some(fields) = step.fields {
-                snapshots.push(FieldSnapshot {
-                    step_index: i,
-                    time: tau,
-                    crank_angle_deg: crank,
-                    fields,
-                });
-            }
-            records.push(record(&step.accepted, w, tau, crank));
-            observer.on_step(&InverseProgress {
-                phase: InversePhase::Cycle(cycle),
-                step: i + 1,
-                steps: n,
-                max_cycles: params.max_cycles,
-                time: t,
-                crank_angle_deg: crank,
-                eccentricity_ratio: orbit.eps,
-                residual: step.accepted.residual,
-                newton_iterations: step.accepted.iterations,
-            });
-        }
-        let current: Vec<[f64; 2]> = records.iter().map(|r| r.eccentricity_ratio).collect();
-        eccentricity_change = orbit_change(previous.as_deref(), &current);
-        film_state_change = film.state_change(&state_start, &orbit.state);
-        observer.on_cycle(cycle, eccentricity_change, film_state_change);
-        previous = Some(current);
-        if is_periodic(params, eccentricity_change, film_state_change) {
-            periodic = true;
-            break;
-        }
+/// Load and conditions of the load cycle at `t` (the [`Drive`] of the cycles).
+fn drive_at<L: LoadHistory + ?Sized>(
+    load: &L,
+    t: f64,
+) -> Result<([f64; 2], OperatingConditions), InverseError> {
+    let w = load.load(t);
+    if !(w[0].is_finite() && w[1].is_finite()) {
+        return Err(InverseError::NonFiniteLoad {
+            quantity: "load",
+            time: t,
+        });
     }
+    Ok((w, conditions_at(load, t)?))
+}
 
-    let warning = (!periodic).then_some(InverseWarning::NotPeriodic {
-        cycles,
-        eccentricity_change,
-        eccentricity_tolerance: params.periodicity_tolerance,
-        film_state_change,
-        film_state_tolerance: params.film_state_tolerance,
-    });
-    let summary = summarize(&records);
-    let end = InverseStart {
-        eccentricity_ratio: orbit.eps,
-        previous: [orbit.prev, orbit.prev2],
-        state: orbit.state,
-    };
-    let solution = InverseSolution {
-        steps: records,
-        fields: snapshots,
-        summary,
-        info: InverseInfo {
-            steps_per_cycle: n,
-            time_step: dt,
-            period,
-            cycle_deg,
-            run_in_steps: run_in,
-            cycles,
-            periodic,
-            eccentricity_change,
-            film_state_change,
-            warning,
-            reference_load: w_ref,
-            newton_iterations: stepper.stats.newton,
-            max_newton_iterations_per_step: stepper.stats.max_newton,
-            film_evaluations: stepper.stats.evaluations,
-            jacobian_evaluations: stepper.stats.jacobians,
-            sweep_iterations: stepper.stats.sweeps,
-            stalled_steps: stepper.stats.stalled,
-            max_stalled_residual: stepper.stats.max_stalled,
-            split_steps: stepper.stats.split,
-            wall_time: start.elapsed().as_secs_f64(),
-        },
-    };
-    Ok((solution, end))
+/// What the cycles of one solve produced: the last cycle's records and snapshots, and the
+/// periodicity test's numbers.
+struct CyclesOutcome {
+    records: Vec<InverseStep>,
+    snapshots: Vec<FieldSnapshot>,
+    cycles: usize,
+    periodic: bool,
+    eccentricity_change: f64,
+    film_state_change: f64,
 }
 
 /// max_i |ε_i − ε_i(previous cycle)| over the cycle's steps; ∞ for the first cycle.
@@ -574,9 +594,6 @@ struct Leg {
     at: Where,
 }
 
-/// The journal's last three accepted positions (the quadratic predictor's data) and the film
-/// state at the last one: what the march carries from step to step, in the run-in and in the
-/// cycles alike.
 /// Where an inverse solve starts or ended ([`solve_inverse_from`]): the journal's position
 /// ε at the end of a cycle, its two positions before (for the Newton's first guesses), and
 /// the film model's state there.
@@ -590,6 +607,9 @@ pub struct InverseStart<S> {
     pub state: S,
 }
 
+/// The journal's last three accepted positions (the quadratic predictor's data) and the film
+/// state at the last one: what the march carries from step to step, in the run-in and in the
+/// cycles alike.
 struct Orbit<S> {
     eps: [f64; 2],
     prev: [f64; 2],
@@ -605,6 +625,171 @@ struct Marched {
 }
 
 impl<S: Clone> Orbit<S> {
+    /// The run-in: from the orbit's start (ε = 0, full film), `grid.run_in` steps ending at
+    /// t = 0 under a quasi-load ramped smoothly from 0 to W(0), at the conditions of t = 0.
+    /// Errors give the crank angle within the cycle.
+    fn run_in<F, L, O>(
+        &mut self,
+        stepper: &mut Stepper<'_>,
+        film: &mut F,
+        load: &L,
+        grid: &CycleGrid,
+        observer: &mut O,
+    ) -> Result<(), InverseError>
+    where
+        F: FilmModel<State = S> + ?Sized,
+        L: LoadHistory + ?Sized,
+        O: InverseObserver + ?Sized,
+    {
+        let (run_in, dt) = (grid.run_in, grid.dt);
+        if run_in == 0 {
+            return Ok(());
+        }
+        let w0 = load.load(0.0);
+        let cond0 = conditions_at(load, 0.0)?;
+        // The ramp as a function of time (also at the midpoints of split steps).
+        let ramp = |tt: f64| {
+            let s = smoothstep(((run_in as f64 + tt / dt) / run_in as f64).clamp(0.0, 1.0));
+            Ok(([s * w0[0], s * w0[1]], cond0.clone()))
+        };
+        for k in 1..=run_in {
+            let t = -((run_in - k) as f64) * dt;
+            let at = Where {
+                time: t,
+                crank_angle_deg: load.crank_angle_deg(t).rem_euclid(grid.cycle_deg),
+                cycle: 0,
+            };
+            let step = self.march_step(stepper, film, dt, &ramp, at, false)?;
+            observer.on_step(&InverseProgress {
+                phase: InversePhase::RunIn,
+                step: k,
+                steps: run_in,
+                max_cycles: stepper.params.max_cycles,
+                time: t,
+                crank_angle_deg: at.crank_angle_deg,
+                eccentricity_ratio: self.eps,
+                residual: step.accepted.residual,
+                newton_iterations: step.accepted.iterations,
+            });
+            at.stop_if_requested(observer)?;
+        }
+        Ok(())
+    }
+
+    /// Load cycles 1, 2, … until the periodicity test holds or `max_cycles` is reached.
+    fn cycles_until_periodic<F, L, O>(
+        &mut self,
+        stepper: &mut Stepper<'_>,
+        film: &mut F,
+        load: &L,
+        grid: &CycleGrid,
+        observer: &mut O,
+    ) -> Result<CyclesOutcome, InverseError>
+    where
+        F: FilmModel<State = S> + ?Sized,
+        L: LoadHistory + ?Sized,
+        O: InverseObserver + ?Sized,
+    {
+        let params = stepper.params;
+        let mut outcome = CyclesOutcome {
+            records: Vec::new(),
+            snapshots: Vec::new(),
+            cycles: 0,
+            periodic: false,
+            eccentricity_change: f64::INFINITY,
+            film_state_change: 0.0,
+        };
+        let mut previous: Option<Vec<[f64; 2]>> = None;
+        for cycle in 1..=params.max_cycles {
+            outcome.cycles = cycle;
+            let state_start = self.state.clone();
+            (outcome.records, outcome.snapshots) =
+                self.march_cycle(stepper, film, load, grid, cycle, observer)?;
+            let current: Vec<[f64; 2]> = outcome
+                .records
+                .iter()
+                .map(|r| r.eccentricity_ratio)
+                .collect();
+            outcome.eccentricity_change = orbit_change(previous.as_deref(), &current);
+            outcome.film_state_change = film.state_change(&state_start, &self.state);
+            observer.on_cycle(
+                cycle,
+                outcome.eccentricity_change,
+                outcome.film_state_change,
+            );
+            previous = Some(current);
+            if is_periodic(
+                params,
+                outcome.eccentricity_change,
+                outcome.film_state_change,
+            ) {
+                outcome.periodic = true;
+                break;
+            }
+        }
+        Ok(outcome)
+    }
+
+    /// One load cycle: N steps from t_c = (cycle − 1)·τ; their records and (every
+    /// `field_stride` steps) field snapshots.
+    fn march_cycle<F, L, O>(
+        &mut self,
+        stepper: &mut Stepper<'_>,
+        film: &mut F,
+        load: &L,
+        grid: &CycleGrid,
+        cycle: usize,
+        observer: &mut O,
+    ) -> Result<(Vec<InverseStep>, Vec<FieldSnapshot>), InverseError>
+    where
+        F: FilmModel<State = S> + ?Sized,
+        L: LoadHistory + ?Sized,
+        O: InverseObserver + ?Sized,
+    {
+        let params = stepper.params;
+        let drive = |tt: f64| drive_at(load, tt);
+        let mut records = Vec::with_capacity(grid.steps);
+        let mut snapshots = Vec::new();
+        let t_c = (cycle - 1) as f64 * grid.period;
+        for i in 0..grid.steps {
+            let tau = (i + 1) as f64 * grid.dt;
+            let t = t_c + tau;
+            let (w, _) = drive(t)?;
+            let crank = load.crank_angle_deg(tau);
+            let at = Where {
+                time: t,
+                crank_angle_deg: crank,
+                cycle,
+            };
+            // Steps end at crank angles (i + 1)·Δ: capturing at the ends of strides puts the
+            // snapshots at stride·Δ, 2·stride·Δ, …, including the cycle's end (= its start).
+            let capture = params.field_stride > 0 && (i + 1) % params.field_stride == 0;
+            let step = self.march_step(stepper, film, grid.dt, &drive, at, capture)?;
+            if let Some(fields) = step.fields {
+                snapshots.push(FieldSnapshot {
+                    step_index: i,
+                    time: tau,
+                    crank_angle_deg: crank,
+                    fields,
+                });
+            }
+            records.push(record(&step.accepted, w, tau, crank));
+            observer.on_step(&InverseProgress {
+                phase: InversePhase::Cycle(cycle),
+                step: i + 1,
+                steps: grid.steps,
+                max_cycles: params.max_cycles,
+                time: t,
+                crank_angle_deg: crank,
+                eccentricity_ratio: self.eps,
+                residual: step.accepted.residual,
+                newton_iterations: step.accepted.iterations,
+            });
+            at.stop_if_requested(observer)?;
+        }
+        Ok((records, snapshots))
+    }
+
     /// One time step of the march (run-in and cycles alike) to `at.time`: the quadratic
     /// predictor's guess, [`Stepper::advance`] (halving the step where Newton fails), optionally the
     /// accepted step solved once more with the fields captured, and the orbit moved on.
@@ -722,7 +907,11 @@ impl Stepper<'_> {
             other => other,
         }
     }
-    /// Newton on r(ε) = F_film(ε) + W for one step; see the module docs of [`super`].
+    /// Newton on r(ε) = F_film(ε) + W for one step; see the module docs of [`super`]. Each
+    /// iteration: the collapse and convergence tests, a Jacobian refresh where it is stale
+    /// ([`Stepper::refresh_jacobian`]), the Newton direction, and a backtracking line search
+    /// ([`Stepper::line_search`]). Newton that cannot reach `tolerance` (iteration limit, or no
+    /// descent on a fresh Jacobian) ends in [`Stepper::give_up`].
     fn newton<F: FilmModel + ?Sized>(
         &mut self,
         film: &mut F,
@@ -730,75 +919,15 @@ impl Stepper<'_> {
         guess: [f64; 2],
         target: Target<'_>,
     ) -> Result<Accepted<F::State>, InverseError> {
-        let Target { dt, cond, w, at } = target;
         let params = self.params;
-        let w_ref = self.w_ref;
-        let jac = &mut self.jac;
-        let stats = &mut self.stats;
-        let scale = norm(w).max(w_ref);
-        let eval = |film: &mut F, eps: [f64; 2], stats: &mut Stats| {
-            stats.evaluations += 1;
-            match film.step(state, eps, dt, cond) {
-                Ok((resp, st)) => {
-                    stats.sweeps += resp.sweep_iterations;
-                    let r = [resp.film_force[0] + w[0], resp.film_force[1] + w[1]];
-                    if !(r[0].is_finite() && r[1].is_finite()) {
-                        return Err(at.film_error(
-                            eps,
-                            FilmModelError::NonFinite {
-                                quantity: "film force",
-                            },
-                        ));
-                    }
-                    Ok((resp, st, r))
-                }
-                Err(source) => Err(at.film_error(eps, source)),
-            }
+        let problem = StepProblem {
+            state,
+            target,
+            scale: norm(target.w).max(self.w_ref),
         };
-        let collapse = |eps: [f64; 2], h: f64, res: f64| InverseError::Collapse {
-            time: at.time,
-            crank_angle_deg: at.crank_angle_deg,
-            cycle: at.cycle,
-            eccentricity_ratio: eps,
-            eccentricity: norm(eps),
-            min_film_thickness: h,
-            residual: res,
-        };
-
-        // Newton cannot reach `tolerance` (iteration limit, or no descent on a fresh Jacobian): the
-        // best point is accepted as a stall if within `accept_tolerance`, else the step fails. (|ε|
-        // below the collapse limit was checked at the top of the iteration that produced `eps`.)
-        let give_up = |stats: &mut Stats,
-                       eps: [f64; 2],
-                       resp: FilmResponse,
-                       st: F::State,
-                       res: f64,
-                       iterations: usize|
-         -> Result<Accepted<F::State>, InverseError> {
-            stats.newton += iterations;
-            if res > params.accept_tolerance {
-                return Err(at.newton_failed(iterations, res, eps));
-            }
-            stats.stalled += 1;
-            stats.max_stalled = stats.max_stalled.max(res);
-            stats.max_newton = stats.max_newton.max(iterations);
-            if resp.min_film_thickness < params.min_film_floor {
-                return Err(collapse(eps, resp.min_film_thickness, res));
-            }
-            Ok(Accepted {
-                eps,
-                response: resp,
-                state: st,
-                residual: res,
-                iterations,
-            })
-        };
-
-        let mut eps = guess;
-        let (mut resp, mut st, mut r) = eval(film, eps, stats)?;
+        let mut cur = problem.evaluate(film, guess, &mut self.stats)?;
         // Where the film model was last solved (its exact Jacobian is that point's).
-        let mut last_solved = eps;
-        let mut res = norm(r) / scale;
+        let mut last_solved = guess;
         let mut iterations = 0;
         let mut fresh = false;
         // After a stall on a fresh Jacobian, one retry with a secant over a 100× wider difference
@@ -806,126 +935,188 @@ impl Stepper<'_> {
         let mut wide_tried = false;
         let mut fd_h = params.fd_step;
         loop {
-            let e = norm(eps);
-            if e >= params.collapse_eccentricity
-                || (res <= params.tolerance && resp.min_film_thickness < params.min_film_floor)
+            let converged = cur.res <= params.tolerance;
+            if norm(cur.eps) >= params.collapse_eccentricity
+                || (converged && cur.response.min_film_thickness < params.min_film_floor)
             {
-                return Err(collapse(eps, resp.min_film_thickness, res));
+                return Err(problem.collapse(&cur));
             }
-            if res <= params.tolerance {
-                stats.newton += iterations;
-                stats.max_newton = stats.max_newton.max(iterations);
-                return Ok(Accepted {
-                    eps,
-                    response: resp,
-                    state: st,
-                    residual: res,
-                    iterations,
-                });
+            if converged {
+                return Ok(self.accept(cur, iterations));
             }
             if iterations >= params.max_newton_iterations {
-                return give_up(stats, eps, resp, st, res, iterations);
+                return self.give_up(&problem, cur, iterations);
             }
             iterations += 1;
-            let exact = match params.jacobian {
-                JacobianMethod::Exact if !jac.valid => {
-                    if last_solved != eps {
-                        eval(film, eps, stats)?;
-                        last_solved = eps;
-                    }
-                    film.force_jacobian()
-                }
-                _ => None,
-            };
-            if let Some(m) = exact {
-                stats.jacobians += 1;
-                jac.m = m.map_err(|source| at.film_error(eps, source))?;
-                jac.valid = true;
-                fresh = true;
-            } else if !jac.valid || params.jacobian == JacobianMethod::FiniteDifference {
-                let mut eval_here = |e: [f64; 2], stats: &mut Stats| eval(film, e, stats);
-                jac.m = fd_jacobian(&mut eval_here, eps, resp.film_force, w, fd_h, stats)?;
-                last_solved = [f64::NAN; 2];
-                fd_h = params.fd_step;
-                jac.valid = true;
+            if self.refresh_jacobian(film, &problem, &cur, &mut last_solved, &mut fd_h)? {
                 fresh = true;
             }
-            // Solve J Δ = −r.
-            let m = jac.m;
-            let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-            let mut delta = [
-                (-r[0] * m[1][1] + r[1] * m[0][1]) / det,
-                (-r[1] * m[0][0] + r[0] * m[1][0]) / det,
-            ];
-            if !(det != 0.0 && delta[0].is_finite() && delta[1].is_finite()) {
+            let Some(delta) = self.newton_direction(&cur) else {
                 if fresh {
-                    return Err(at.newton_failed(iterations, res, eps));
+                    return Err(target.at.newton_failed(iterations, cur.res, cur.eps));
                 }
-                jac.valid = false;
+                self.jac.valid = false;
                 continue;
-            }
-            let dn = norm(delta);
-            if dn > params.max_newton_step {
-                let s = params.max_newton_step / dn;
-                delta = [delta[0] * s, delta[1] * s];
-            }
-            // Never close more than half of the remaining gap to the wall.
-            let limit = e + 0.5 * (1.0 - e);
-            let mut lambda = 1.0;
-            while norm([eps[0] + lambda * delta[0], eps[1] + lambda * delta[1]]) > limit {
-                lambda *= 0.5;
-            }
-            // Backtracking on |r|.
-            let mut accepted = false;
-            for _ in 0..8 {
-                let trial = [eps[0] + lambda * delta[0], eps[1] + lambda * delta[1]];
-                let (tresp, tst, tr) = eval(film, trial, stats)?;
-                last_solved = trial;
-                let tres = norm(tr) / scale;
-                if tres < res {
-                    let s = [trial[0] - eps[0], trial[1] - eps[1]];
-                    match params.jacobian {
-                        JacobianMethod::Broyden => {
-                            broyden(&mut jac.m, s, [tr[0] - r[0], tr[1] - r[1]]);
-                        }
-                        // Chord steps on the step's exact Jacobian while they contract well;
-                        // a fresh one when the residual falls by less than 4×.
-                        JacobianMethod::Exact if tres > 0.25 * res => jac.valid = false,
-                        _ => {}
-                    }
-                    eps = trial;
-                    resp = tresp;
-                    st = tst;
-                    r = tr;
-                    res = tres;
-                    accepted = true;
+            };
+            match self.line_search(film, &problem, &cur, delta, fresh, &mut last_solved)? {
+                Some(better) => {
+                    cur = better;
                     fresh = false;
-                    break;
                 }
-                if !fresh {
-                    // A stale Broyden Jacobian: refresh it before cutting the step.
-                    break;
-                }
-                lambda *= 0.5;
-            }
-            if !accepted {
-                if fresh && !wide_tried && params.jacobian != JacobianMethod::Exact {
+                None if fresh && !wide_tried && params.jacobian != JacobianMethod::Exact => {
                     wide_tried = true;
                     fd_h = (100.0 * params.fd_step).max(1e-3);
-                    jac.valid = false;
-                    continue;
+                    self.jac.valid = false;
                 }
-                if fresh {
-                    return give_up(stats, eps, resp, st, res, iterations);
-                }
-                jac.valid = false;
+                None if fresh => return self.give_up(&problem, cur, iterations),
+                None => self.jac.valid = false,
             }
         }
+    }
+
+    /// Refresh ∂F/∂ε at the iterate where the carried Jacobian is stale (at every iteration
+    /// for [`JacobianMethod::FiniteDifference`]): the film's exact Jacobian (the film solved at
+    /// the iterate first if its last solve was elsewhere), else forward differences of step
+    /// `fd_h`, which is then reset to `fd_step`. Returns whether the Jacobian was refreshed.
+    fn refresh_jacobian<F: FilmModel + ?Sized>(
+        &mut self,
+        film: &mut F,
+        problem: &StepProblem<'_, F::State>,
+        cur: &Iterate<F::State>,
+        last_solved: &mut [f64; 2],
+        fd_h: &mut f64,
+    ) -> Result<bool, InverseError> {
+        let params = self.params;
+        let exact = match params.jacobian {
+            JacobianMethod::Exact if !self.jac.valid => {
+                if *last_solved != cur.eps {
+                    problem.evaluate(film, cur.eps, &mut self.stats)?;
+                    *last_solved = cur.eps;
+                }
+                film.force_jacobian()
+            }
+            _ => None,
+        };
+        if let Some(m) = exact {
+            self.stats.jacobians += 1;
+            self.jac.m = m.map_err(|source| problem.target.at.film_error(cur.eps, source))?;
+            self.jac.valid = true;
+            return Ok(true);
+        }
+        if !self.jac.valid || params.jacobian == JacobianMethod::FiniteDifference {
+            let mut residual_at =
+                |e: [f64; 2], stats: &mut Stats| problem.evaluate(film, e, stats).map(|it| it.r);
+            let (force, w) = (cur.response.film_force, problem.target.w);
+            self.jac.m = fd_jacobian(&mut residual_at, cur.eps, force, w, *fd_h, &mut self.stats)?;
+            *last_solved = [f64::NAN; 2];
+            *fd_h = params.fd_step;
+            self.jac.valid = true;
+            return Ok(true);
+        }
+        Ok(false)
+    }
+
+    /// The Newton direction Δ from J Δ = −r, shortened to `max_newton_step`; `None` when the
+    /// Jacobian is singular or the direction not finite.
+    fn newton_direction<S>(&self, cur: &Iterate<S>) -> Option<[f64; 2]> {
+        let (m, r) = (self.jac.m, cur.r);
+        let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+        let delta = [
+            (-r[0] * m[1][1] + r[1] * m[0][1]) / det,
+            (-r[1] * m[0][0] + r[0] * m[1][0]) / det,
+        ];
+        if !(det != 0.0 && delta[0].is_finite() && delta[1].is_finite()) {
+            return None;
+        }
+        let dn = norm(delta);
+        if dn > self.params.max_newton_step {
+            let s = self.params.max_newton_step / dn;
+            return Some([delta[0] * s, delta[1] * s]);
+        }
+        Some(delta)
+    }
+
+    /// Backtracking on |r| along `delta`, first shortened to close at most half of the gap to
+    /// the wall; up to 8 halvings on a fresh Jacobian, none on a carried one (which is refreshed
+    /// instead). On descent the Jacobian is updated: Broyden's update, or for the exact
+    /// Jacobian marked stale when the residual fell by less than 4× (chord steps otherwise).
+    fn line_search<F: FilmModel + ?Sized>(
+        &mut self,
+        film: &mut F,
+        problem: &StepProblem<'_, F::State>,
+        cur: &Iterate<F::State>,
+        delta: [f64; 2],
+        fresh: bool,
+        last_solved: &mut [f64; 2],
+    ) -> Result<Option<Iterate<F::State>>, InverseError> {
+        let eps = cur.eps;
+        let along = |lambda: f64| [eps[0] + lambda * delta[0], eps[1] + lambda * delta[1]];
+        let e = norm(eps);
+        let limit = e + 0.5 * (1.0 - e);
+        let mut lambda = 1.0;
+        while norm(along(lambda)) > limit {
+            lambda *= 0.5;
+        }
+        for _ in 0..8 {
+            let trial = problem.evaluate(film, along(lambda), &mut self.stats)?;
+            *last_solved = trial.eps;
+            if trial.res < cur.res {
+                let s = [trial.eps[0] - eps[0], trial.eps[1] - eps[1]];
+                match self.params.jacobian {
+                    JacobianMethod::Broyden => {
+                        let y = [trial.r[0] - cur.r[0], trial.r[1] - cur.r[1]];
+                        broyden(&mut self.jac.m, s, y);
+                    }
+                    JacobianMethod::Exact if trial.res > 0.25 * cur.res => self.jac.valid = false,
+                    _ => {}
+                }
+                return Ok(Some(trial));
+            }
+            if !fresh {
+                break;
+            }
+            lambda *= 0.5;
+        }
+        Ok(None)
+    }
+
+    /// A converged iterate, counted.
+    fn accept<S>(&mut self, cur: Iterate<S>, iterations: usize) -> Accepted<S> {
+        self.stats.newton += iterations;
+        self.stats.max_newton = self.stats.max_newton.max(iterations);
+        cur.accepted(iterations)
+    }
+
+    /// Newton could not reach `tolerance`: the best point is accepted as a stall if within
+    /// `accept_tolerance`, else the step fails. (|ε| below the collapse limit was checked at
+    /// the top of the iteration that produced it.)
+    fn give_up<S>(
+        &mut self,
+        problem: &StepProblem<'_, S>,
+        cur: Iterate<S>,
+        iterations: usize,
+    ) -> Result<Accepted<S>, InverseError> {
+        let params = self.params;
+        self.stats.newton += iterations;
+        if cur.res > params.accept_tolerance {
+            return Err(problem
+                .target
+                .at
+                .newton_failed(iterations, cur.res, cur.eps));
+        }
+        self.stats.stalled += 1;
+        self.stats.max_stalled = self.stats.max_stalled.max(cur.res);
+        self.stats.max_newton = self.stats.max_newton.max(iterations);
+        if cur.response.min_film_thickness < params.min_film_floor {
+            return Err(problem.collapse(&cur));
+        }
+        Ok(cur.accepted(iterations))
     }
 }
 
 /// What one Newton solve aims at: the step length, the conditions and load at its end, and
 /// where it is (for errors).
+#[derive(Clone, Copy)]
 struct Target<'c> {
     dt: f64,
     cond: &'c OperatingConditions,
@@ -933,13 +1124,90 @@ struct Target<'c> {
     at: Where,
 }
 
-type Eval<'a, S> =
-    dyn FnMut([f64; 2], &mut Stats) -> Result<(FilmResponse, S, [f64; 2]), InverseError> + 'a;
+/// What stays fixed during one step's Newton: the film state the step starts from, its
+/// target and the residual scale max(|W|, W_ref).
+struct StepProblem<'a, S> {
+    state: &'a S,
+    target: Target<'a>,
+    scale: f64,
+}
+
+/// One Newton iterate: ε, the film's response and state there, the residual r = F_film + W
+/// and its scaled norm |r| / scale.
+struct Iterate<S> {
+    eps: [f64; 2],
+    response: FilmResponse,
+    state: S,
+    r: [f64; 2],
+    res: f64,
+}
+
+impl<S> Iterate<S> {
+    /// The iterate as the step's answer.
+    fn accepted(self, iterations: usize) -> Accepted<S> {
+        Accepted {
+            eps: self.eps,
+            response: self.response,
+            state: self.state,
+            residual: self.res,
+            iterations,
+        }
+    }
+}
+
+impl<S> StepProblem<'_, S> {
+    /// Solve the film at `eps` and form the residual; a non-finite film force is an error
+    /// naming the trial.
+    fn evaluate<F: FilmModel<State = S> + ?Sized>(
+        &self,
+        film: &mut F,
+        eps: [f64; 2],
+        stats: &mut Stats,
+    ) -> Result<Iterate<S>, InverseError> {
+        let Target { dt, cond, w, at } = self.target;
+        stats.evaluations += 1;
+        let (response, state) = film
+            .step(self.state, eps, dt, cond)
+            .map_err(|source| at.film_error(eps, source))?;
+        stats.sweeps += response.sweep_iterations;
+        let r = [response.film_force[0] + w[0], response.film_force[1] + w[1]];
+        if !(r[0].is_finite() && r[1].is_finite()) {
+            let source = FilmModelError::NonFinite {
+                quantity: "film force",
+            };
+            return Err(at.film_error(eps, source));
+        }
+        Ok(Iterate {
+            eps,
+            response,
+            state,
+            r,
+            res: norm(r) / self.scale,
+        })
+    }
+
+    /// The film cannot carry the load at this iterate.
+    fn collapse(&self, cur: &Iterate<S>) -> InverseError {
+        let at = self.target.at;
+        InverseError::Collapse {
+            time: at.time,
+            crank_angle_deg: at.crank_angle_deg,
+            cycle: at.cycle,
+            eccentricity_ratio: cur.eps,
+            eccentricity: norm(cur.eps),
+            min_film_thickness: cur.response.min_film_thickness,
+            residual: cur.res,
+        }
+    }
+}
+
+/// The residual r(ε) at a trial, for [`fd_jacobian`].
+type ResidualAt<'a> = dyn FnMut([f64; 2], &mut Stats) -> Result<[f64; 2], InverseError> + 'a;
 
 /// Forward-difference ∂F/∂ε at ε (column k from a step h along ε_k, taken inwards when the
 /// forward point would leave the clearance).
-fn fd_jacobian<S>(
-    eval: &mut Eval<'_, S>,
+fn fd_jacobian(
+    residual_at: &mut ResidualAt<'_>,
     eps: [f64; 2],
     force: [f64; 2],
     w: [f64; 2],
@@ -956,7 +1224,7 @@ fn fd_jacobian<S>(
             p[k] = eps[k] - h;
             hk = -h;
         }
-        let (_, _, r) = eval(p, stats)?;
+        let r = residual_at(p, stats)?;
         for i in 0..2 {
             m[i][k] = (r[i] - w[i] - force[i]) / hk;
         }
@@ -1078,6 +1346,66 @@ mod tests {
             assert_eq!(obs.1, sol.info.cycles);
             assert_eq!(sol.steps.len(), 36);
             assert!((sol.steps[35].crank_angle_deg - 360.0).abs() < 1e-9);
+        }
+    }
+
+    /// Asks to stop after `after` steps.
+    struct StopAfter {
+        after: usize,
+        seen: usize,
+    }
+    impl InverseObserver for StopAfter {
+        fn on_step(&mut self, _p: &InverseProgress) {
+            self.seen += 1;
+        }
+        fn stop_requested(&mut self) -> bool {
+            self.seen >= self.after
+        }
+    }
+
+    #[test]
+    fn a_stop_request_ends_the_solve_after_that_step_naming_it() {
+        let mut film = Spring {
+            k: 100.0,
+            d: 0.1,
+            nan_beyond: 2.0,
+        };
+        let params = InverseParams {
+            step_deg: 10.0,
+            run_in_steps: 8,
+            ..Default::default()
+        };
+        // In the run-in (step 5 of 8 ends 3 steps of 10° before the first cycle) …
+        let mut obs = StopAfter { after: 5, seen: 0 };
+        let err = solve_inverse(&params, &history([30.0, -40.0]), &mut film, &mut obs);
+        match err {
+            Err(InverseError::Interrupted {
+                cycle,
+                crank_angle_deg,
+                ..
+            }) => {
+                assert_eq!(cycle, 0);
+                assert!((crank_angle_deg - 330.0).abs() < 1e-9, "{crank_angle_deg}");
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(obs.seen, 5, "no step after the request");
+        // … and in a cycle: step 4 of cycle 2 ends at 40° of it.
+        let mut obs = StopAfter {
+            after: 8 + 36 + 4,
+            seen: 0,
+        };
+        match solve_inverse(&params, &history([30.0, -40.0]), &mut film, &mut obs) {
+            Err(InverseError::Interrupted {
+                cycle,
+                crank_angle_deg,
+                time,
+            }) => {
+                assert_eq!(cycle, 2);
+                assert!((crank_angle_deg - 40.0).abs() < 1e-9, "{crank_angle_deg}");
+                assert!((time - (1.0 + 4.0 / 36.0)).abs() < 1e-12, "{time}");
+            }
+            other => panic!("{other:?}"),
         }
     }
 

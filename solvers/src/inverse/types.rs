@@ -141,6 +141,11 @@ pub trait InverseObserver {
     fn on_step(&mut self, _progress: &InverseProgress) {}
     /// After every load cycle, with the periodicity measures of that cycle.
     fn on_cycle(&mut self, _cycle: usize, _eccentricity_change: f64, _film_state_change: f64) {}
+    /// Asked after every accepted time step: `true` stops the solve with
+    /// [`InverseError::Interrupted`] (a user's Ctrl-C, a time budget).
+    fn stop_requested(&mut self) -> bool {
+        false
+    }
 }
 
 /// An observer that ignores everything.
@@ -323,6 +328,14 @@ pub enum InverseError {
     /// A parameter or the load history is unusable.
     #[error("invalid parameter {name} = {value}")]
     InvalidParameter { name: &'static str, value: f64 },
+    /// The observer asked to stop ([`InverseObserver::stop_requested`]) after the step that
+    /// ended here.
+    #[error("interrupted at {when}", when = When(*time, *crank_angle_deg, *cycle))]
+    Interrupted {
+        time: f64,
+        crank_angle_deg: f64,
+        cycle: usize,
+    },
     /// The film cannot carry the load: the journal reached the wall.
     #[error(
         "film collapse at {when}: |ε| = {eccentricity:.6}, ε = ({:.6}, {:.6}), h_min = {min_film_thickness:.3e} m, residual {residual:.3e}",
