@@ -220,75 +220,8 @@ impl ReynoldsSqueezeFilm {
                 uy: u_dir[1],
             });
         }
-        let SqueezeFilmParams {
-            length_to_diameter: ld,
-            circumferential_nodes: n,
-            axial_cells: m,
-            clustering: a,
-        } = self.params;
-        let theta_eps = if e > 0.0 { eps[1].atan2(eps[0]) } else { 0.0 };
-        let ds = TAU / n as f64;
-        let theta_of = |s: f64| theta_eps + s - a * s.sin();
-        let film = |t: f64| 1.0 - eps[0] * t.cos() - eps[1] * t.sin();
-        let theta: Vec<f64> = (0..n).map(|i| theta_of(i as f64 * ds)).collect();
-        // Cell widths Δθ_i and node spacings θ_{i+1} − θ_i (periodic).
-        let cell: Vec<f64> = (0..n)
-            .map(|i| {
-                let s = i as f64 * ds;
-                theta_of(s + 0.5 * ds) - theta_of(s - 0.5 * ds)
-            })
-            .collect();
-        let gap: Vec<f64> = (0..n)
-            .map(|i| {
-                let s = i as f64 * ds;
-                theta_of(s + ds) - theta_of(s)
-            })
-            .collect();
-        let face_h3: Vec<f64> = (0..n)
-            .map(|i| film(theta_of((i as f64 + 0.5) * ds)).powi(3))
-            .collect();
-        let node_h3: Vec<f64> = theta.iter().map(|&t| film(t).powi(3)).collect();
-        let dxi = ld / m as f64;
-        let xi: Vec<f64> = (0..m).map(|j| j as f64 * dxi).collect();
-        let width = |j: usize| if j == 0 { 0.5 * dxi } else { dxi };
-        let idx = |i: usize, j: usize| i * m + j;
-        let nn = n * m;
-
-        // Operator A (negative flux operator), stored per row as (col, value), and rhs f.
-        let mut rows: Vec<Vec<(usize, f64)>> = vec![Vec::with_capacity(5); nn];
-        let mut rhs = vec![0.0; nn];
-        for i in 0..n {
-            let ip = (i + 1) % n;
-            let im = (i + n - 1) % n;
-            let ct = [theta[i].cos(), theta[i].sin()];
-            let source = 12.0 * (u_dir[0] * ct[0] + u_dir[1] * ct[1]);
-            for j in 0..m {
-                let k = idx(i, j);
-                let wj = width(j);
-                let east = face_h3[i] / gap[i] * wj;
-                let west = face_h3[im] / gap[im] * wj;
-                // ξ faces: north (towards the end) always; south only for j > 0 (mirror at 0).
-                let north = node_h3[i] / dxi * cell[i];
-                let south = if j > 0 {
-                    node_h3[i] / dxi * cell[i]
-                } else {
-                    0.0
-                };
-                let diag = east + west + north + south;
-                let row = &mut rows[k];
-                row.push((idx(ip, j), -east));
-                row.push((idx(im, j), -west));
-                if j + 1 < m {
-                    row.push((idx(i, j + 1), -north));
-                } // else the neighbour is the end row, P = 0: only the diagonal term stays.
-                if j > 0 {
-                    row.push((idx(i, j - 1), -south));
-                }
-                row.push((k, diag));
-                rhs[k] = source * cell[i] * wj;
-            }
-        }
-
+        let grid = SqueezeGrid::new(&self.params, eps);
+        let (rows, rhs) = grid.assemble(u_dir);
         // Primal–dual active set. Start: the last active set at this ε, else the nodes where
         // the squeeze pulls (f ≤ 0).
         let key = [eps[0].to_bits(), eps[1].to_bits()];
@@ -299,6 +232,49 @@ impl ReynoldsSqueezeFilm {
         });
         let mut active: Vec<bool> =
             cached.unwrap_or_else(|| rhs.iter().map(|&f| f <= 0.0).collect());
+        let (p, passes) = self.active_set(&rows, &rhs, &mut active, eps)?;
+        if let Ok(mut g) = self.last_active.lock() {
+            *g = Some((key, active));
+        }
+        // Z = 1/(4 L/D) ∫∫ P n dθ dξ over ξ ∈ [−L/D, L/D] = 2 × the half domain.
+        let (m, ld) = (grid.xi.len(), self.params.length_to_diameter);
+        let mut load = [0.0; 2];
+        let mut wet = 0.0;
+        for (i, theta) in grid.theta.iter().enumerate() {
+            let (st, ct) = theta.sin_cos();
+            for j in 0..m {
+                let da = grid.cell[i] * grid.width(j);
+                let pk = p[i * m + j];
+                load[0] += pk * ct * da;
+                load[1] += pk * st * da;
+                if pk > 0.0 {
+                    wet += da;
+                }
+            }
+        }
+        let scale = 2.0 / (4.0 * ld);
+        Ok(SqueezeFilmSolution {
+            load: [load[0] * scale, load[1] * scale],
+            pressure: p,
+            theta: grid.theta,
+            xi: grid.xi,
+            pressurised_fraction: wet / (TAU * ld),
+            passes,
+        })
+    }
+
+    /// The primal–dual active-set passes (module docs) on the operator `rows` and right-hand
+    /// side `rhs` from the start set `active` (updated to the final one). Returns P and the
+    /// number of passes.
+    fn active_set(
+        &self,
+        rows: &[Vec<(usize, f64)>],
+        rhs: &[f64],
+        active: &mut [bool],
+        eps: [f64; 2],
+    ) -> Result<(Vec<f64>, usize), SqueezeFilmError> {
+        let nn = rows.len();
+        let m = self.params.axial_cells;
         let mut p = vec![0.0; nn];
         let mut passes = 0;
         loop {
@@ -353,7 +329,7 @@ impl ReynoldsSqueezeFilm {
                 }
             }
             if changed == 0 {
-                break;
+                return Ok((p, passes));
             }
             if passes >= MAX_PASSES {
                 return Err(SqueezeFilmError::ActiveSetNotConverged {
@@ -364,34 +340,111 @@ impl ReynoldsSqueezeFilm {
                 });
             }
         }
+    }
+}
 
-        if let Ok(mut g) = self.last_active.lock() {
-            *g = Some((key, active.clone()));
+/// The clustered grid of one ε (module docs): node angles, cell widths, node spacings, H³ at
+/// the θ-faces and nodes, and the ξ rows.
+struct SqueezeGrid {
+    theta: Vec<f64>,
+    /// Δθ_i of each cell.
+    cell: Vec<f64>,
+    /// θ_{i+1} − θ_i (periodic).
+    gap: Vec<f64>,
+    /// H³ at θ_{i+½}.
+    face_h3: Vec<f64>,
+    /// H³ at θ_i.
+    node_h3: Vec<f64>,
+    xi: Vec<f64>,
+    dxi: f64,
+}
+
+impl SqueezeGrid {
+    fn new(params: &SqueezeFilmParams, eps: [f64; 2]) -> Self {
+        let SqueezeFilmParams {
+            length_to_diameter: ld,
+            circumferential_nodes: n,
+            axial_cells: m,
+            clustering: a,
+        } = *params;
+        let e = eps[0].hypot(eps[1]);
+        let theta_eps = if e > 0.0 { eps[1].atan2(eps[0]) } else { 0.0 };
+        let ds = TAU / n as f64;
+        let theta_of = |s: f64| theta_eps + s - a * s.sin();
+        let film = |t: f64| 1.0 - eps[0] * t.cos() - eps[1] * t.sin();
+        let theta: Vec<f64> = (0..n).map(|i| theta_of(i as f64 * ds)).collect();
+        let cell = (0..n)
+            .map(|i| {
+                let s = i as f64 * ds;
+                theta_of(s + 0.5 * ds) - theta_of(s - 0.5 * ds)
+            })
+            .collect();
+        let gap = (0..n)
+            .map(|i| {
+                let s = i as f64 * ds;
+                theta_of(s + ds) - theta_of(s)
+            })
+            .collect();
+        let face_h3 = (0..n)
+            .map(|i| film(theta_of((i as f64 + 0.5) * ds)).powi(3))
+            .collect();
+        let node_h3 = theta.iter().map(|&t| film(t).powi(3)).collect();
+        let dxi = ld / m as f64;
+        Self {
+            theta,
+            cell,
+            gap,
+            face_h3,
+            node_h3,
+            xi: (0..m).map(|j| j as f64 * dxi).collect(),
+            dxi,
         }
-        // Z = 1/(4 L/D) ∫∫ P n dθ dξ over ξ ∈ [−L/D, L/D] = 2 × the half domain.
-        let mut load = [0.0; 2];
-        let mut wet = 0.0;
+    }
+
+    /// Δξ_j: half a cell on the symmetry row j = 0.
+    fn width(&self, j: usize) -> f64 {
+        if j == 0 { 0.5 * self.dxi } else { self.dxi }
+    }
+
+    /// The operator A (negative flux operator) per row as (column, value), and the right-hand
+    /// side f = −12 (û·n_i) Δθ_i Δξ_j (module docs' stencil).
+    fn assemble(&self, u_dir: [f64; 2]) -> (Vec<Vec<(usize, f64)>>, Vec<f64>) {
+        let (n, m, dxi) = (self.theta.len(), self.xi.len(), self.dxi);
+        let idx = |i: usize, j: usize| i * m + j;
+        let mut rows: Vec<Vec<(usize, f64)>> = vec![Vec::with_capacity(5); n * m];
+        let mut rhs = vec![0.0; n * m];
         for i in 0..n {
-            let (st, ct) = theta[i].sin_cos();
+            let ip = (i + 1) % n;
+            let im = (i + n - 1) % n;
+            let ct = [self.theta[i].cos(), self.theta[i].sin()];
+            let source = 12.0 * (u_dir[0] * ct[0] + u_dir[1] * ct[1]);
             for j in 0..m {
-                let da = cell[i] * width(j);
-                let pk = p[idx(i, j)];
-                load[0] += pk * ct * da;
-                load[1] += pk * st * da;
-                if pk > 0.0 {
-                    wet += da;
+                let k = idx(i, j);
+                let wj = self.width(j);
+                let east = self.face_h3[i] / self.gap[i] * wj;
+                let west = self.face_h3[im] / self.gap[im] * wj;
+                // ξ faces: north (towards the end) always; south only for j > 0 (mirror at 0).
+                let north = self.node_h3[i] / dxi * self.cell[i];
+                let south = if j > 0 {
+                    self.node_h3[i] / dxi * self.cell[i]
+                } else {
+                    0.0
+                };
+                let diag = east + west + north + south;
+                let row = &mut rows[k];
+                row.push((idx(ip, j), -east));
+                row.push((idx(im, j), -west));
+                if j + 1 < m {
+                    row.push((idx(i, j + 1), -north));
+                } // else the neighbour is the end row, P = 0: only the diagonal term stays.
+                if j > 0 {
+                    row.push((idx(i, j - 1), -south));
                 }
+                row.push((k, diag));
+                rhs[k] = source * self.cell[i] * wj;
             }
         }
-        let scale = 2.0 / (4.0 * ld);
-        Ok(SqueezeFilmSolution {
-            load: [load[0] * scale, load[1] * scale],
-            pressure: p,
-            theta,
-            xi,
-            pressurised_fraction: wet / (TAU * ld),
-            passes,
-        })
+        (rows, rhs)
     }
 }
 

@@ -234,99 +234,28 @@ pub fn solve_orbit<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
             value: tau,
         });
     }
-    let limit = params.eccentricity_limit.min(model.max_eccentricity());
     let ode = OrbitOde {
         params: &params.bearing,
         model,
         load,
-        limit,
+        limit: params.eccentricity_limit.min(model.max_eccentricity()),
         model_max: model.max_eccentricity(),
     };
-    let n = params.samples_per_cycle;
     let mut y0 = params.initial_eccentricity;
     let mut history: Vec<Vec<[f64; 2]>> = Vec::new();
-    let (mut evals, mut accepted, mut rejected) = (0usize, 0usize, 0usize);
+    let mut counts = (0usize, 0usize, 0usize);
     let mut change = f64::INFINITY;
-    let mut times: Vec<f64> = Vec::with_capacity(n + 1);
     for cycle in 1..=params.max_cycles {
         let t0 = (cycle - 1) as f64 * tau;
-        let tf = cycle as f64 * tau;
-        times.clear();
-        times.extend((0..=n).map(|i| {
-            if i == n {
-                tf
-            } else {
-                t0 + tau * i as f64 / n as f64
-            }
-        }));
-        let method = ExplicitRungeKutta::dopri5()
-            .rtol(params.relative_tolerance)
-            .atol(params.absolute_tolerance)
-            .h_max(tau / n as f64)
-            .max_steps(1_000_000);
-        // Integrate a hair past tf: the solver's final time may round to just below tf, and the
-        // sample at tf must still be emitted.
-        let result = IVP::ode(&ode, t0, tf + 1e-9 * tau, y0)
-            .t_eval(&times)
-            .event(&ode)
-            .method(method)
-            .solve();
-        let sol = match result {
-            Ok(sol) => sol,
-            Err(err) => {
-                let (time, reason) = describe_error(&err, t0);
-                return Err(MobilityError::Integration {
-                    time: time - t0,
-                    crank_angle_deg: load.crank_angle_deg(time - t0),
-                    cycle,
-                    reason,
-                });
-            }
-        };
-        evals += sol.evals.function;
-        accepted += sol.steps.accepted;
-        rejected += sol.steps.rejected;
-        if matches!(sol.status, Status::Interrupted) || sol.t.len() != n + 1 {
-            // The collapse event ended the cycle (or outputs are missing): find where |ε| is
-            // largest among what was produced.
-            let (t_end, y_end) = sol
-                .t
-                .iter()
-                .zip(&sol.y)
-                .max_by(|a, b| a.1[0].hypot(a.1[1]).total_cmp(&b.1[0].hypot(b.1[1])))
-                .map(|(t, y)| (*t, *y))
-                .unwrap_or((t0, y0));
-            let e = y_end[0].hypot(y_end[1]);
-            if matches!(sol.status, Status::Interrupted) || e >= limit {
-                return Err(MobilityError::FilmCollapse {
-                    time: t_end - t0,
-                    crank_angle_deg: load.crank_angle_deg(t_end - t0),
-                    cycle,
-                    eccentricity: e,
-                    limit,
-                });
-            }
-            return Err(MobilityError::Integration {
-                time: t_end - t0,
-                crank_angle_deg: load.crank_angle_deg(t_end - t0),
-                cycle,
-                reason: format!("{} of {} output samples produced", sol.t.len(), n + 1),
-            });
-        }
-        for (t, y) in sol.t.iter().zip(&sol.y) {
-            if !(y[0].is_finite() && y[1].is_finite()) {
-                return Err(MobilityError::NonFinite {
-                    quantity: "eccentricity",
-                    time: t - t0,
-                    crank_angle_deg: load.crank_angle_deg(t - t0),
-                });
-            }
-        }
-        y0 = sol.y[n];
+        let samples = integrate_cycle(&ode, params, cycle, tau, y0)?;
+        counts.0 += samples.evaluations;
+        counts.1 += samples.accepted;
+        counts.2 += samples.rejected;
+        y0 = samples.y[params.samples_per_cycle];
         if let Some(prev) = history.last() {
             change = prev
                 .iter()
-                .zip(&sol.y)
+                .zip(&samples.y)
                 .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
                 .fold(0.0, f64::max);
         }
@@ -343,22 +272,110 @@ pub fn solve_orbit<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
                     tolerance: params.periodicity_tolerance,
                 });
             }
-            let rel: Vec<f64> = sol.t.iter().map(|t| t - t0).collect();
-            history.push(sol.y.clone());
-            return assemble(
-                params,
-                model,
-                load,
-                rel,
-                sol.y,
-                history,
-                change,
-                (evals, accepted, rejected),
-            );
+            let rel: Vec<f64> = samples.t.iter().map(|t| t - t0).collect();
+            history.push(samples.y.clone());
+            return assemble(params, model, load, rel, samples.y, history, change, counts);
         }
-        history.push(sol.y);
+        history.push(samples.y);
     }
     unreachable!("the loop returns at max_cycles")
+}
+
+/// One load cycle of the orbit ODE, sampled at `samples_per_cycle` + 1 equal times.
+struct CycleSamples {
+    t: Vec<f64>,
+    y: Vec<[f64; 2]>,
+    evaluations: usize,
+    accepted: usize,
+    rejected: usize,
+}
+
+/// Integrate cycle `cycle` (from t₀ = (cycle − 1) τ at ε = `y0`) with DOPRI5 at the tolerances
+/// and sample spacing of `params`. The collapse event, missing samples, a solver failure and a
+/// non-finite ε are errors naming the crank angle and cycle.
+fn integrate_cycle<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
+    ode: &OrbitOde<'_, M, L>,
+    params: &OrbitParams,
+    cycle: usize,
+    tau: f64,
+    y0: [f64; 2],
+) -> Result<CycleSamples, MobilityError> {
+    let (n, load, limit) = (params.samples_per_cycle, ode.load, ode.limit);
+    let t0 = (cycle - 1) as f64 * tau;
+    let tf = cycle as f64 * tau;
+    let times: Vec<f64> = (0..=n)
+        .map(|i| {
+            if i == n {
+                tf
+            } else {
+                t0 + tau * i as f64 / n as f64
+            }
+        })
+        .collect();
+    let method = ExplicitRungeKutta::dopri5()
+        .rtol(params.relative_tolerance)
+        .atol(params.absolute_tolerance)
+        .h_max(tau / n as f64)
+        .max_steps(1_000_000);
+    // Integrate a hair past tf: the solver's final time may round to just below tf, and the
+    // sample at tf must still be emitted.
+    let sol = IVP::ode(ode, t0, tf + 1e-9 * tau, y0)
+        .t_eval(&times)
+        .event(ode)
+        .method(method)
+        .solve()
+        .map_err(|err| {
+            let (time, reason) = describe_error(&err, t0);
+            MobilityError::Integration {
+                time: time - t0,
+                crank_angle_deg: load.crank_angle_deg(time - t0),
+                cycle,
+                reason,
+            }
+        })?;
+    if matches!(sol.status, Status::Interrupted) || sol.t.len() != n + 1 {
+        // The collapse event ended the cycle (or outputs are missing): find where |ε| is
+        // largest among what was produced.
+        let (t_end, y_end) = sol
+            .t
+            .iter()
+            .zip(&sol.y)
+            .max_by(|a, b| a.1[0].hypot(a.1[1]).total_cmp(&b.1[0].hypot(b.1[1])))
+            .map(|(t, y)| (*t, *y))
+            .unwrap_or((t0, y0));
+        let e = y_end[0].hypot(y_end[1]);
+        if matches!(sol.status, Status::Interrupted) || e >= limit {
+            return Err(MobilityError::FilmCollapse {
+                time: t_end - t0,
+                crank_angle_deg: load.crank_angle_deg(t_end - t0),
+                cycle,
+                eccentricity: e,
+                limit,
+            });
+        }
+        return Err(MobilityError::Integration {
+            time: t_end - t0,
+            crank_angle_deg: load.crank_angle_deg(t_end - t0),
+            cycle,
+            reason: format!("{} of {} output samples produced", sol.t.len(), n + 1),
+        });
+    }
+    for (t, y) in sol.t.iter().zip(&sol.y) {
+        if !(y[0].is_finite() && y[1].is_finite()) {
+            return Err(MobilityError::NonFinite {
+                quantity: "eccentricity",
+                time: t - t0,
+                crank_angle_deg: load.crank_angle_deg(t - t0),
+            });
+        }
+    }
+    Ok(CycleSamples {
+        evaluations: sol.evals.function,
+        accepted: sol.steps.accepted,
+        rejected: sol.steps.rejected,
+        t: sol.t,
+        y: sol.y,
+    })
 }
 
 fn describe_error(

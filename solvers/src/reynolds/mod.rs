@@ -716,6 +716,64 @@ impl ReynoldsSolver {
         input: &StepInput,
         start: Option<&FilmState>,
     ) -> Result<(FilmSolution, FilmState), ReynoldsError> {
+        self.check_step(state, input)?;
+        self.set_grid(0.0)?;
+        let old = self.old_time_level(state, input);
+        let (psi0, g0) = start_fields(state, start, self.grid.len())?;
+        let backward_euler = TimeTerm::Step {
+            dt: input.dt,
+            old_content: &old.content,
+            old_outflow: old.outflow.as_deref(),
+        };
+        let bdf2 = old.bdf2.as_ref();
+        let alpha = self
+            .params
+            .viscosity_model
+            .map_or(0.0, |m| m.pressure_coefficient);
+        let core = if alpha > 0.0 {
+            // Picard on the viscosity field, as in steady solves, started from the pressure of
+            // the start film (the previous step's or Newton iterate's film, close to this one:
+            // the low, physical branch of p ∝ μ₀ exp(α p)).
+            let beta = self.params.bulk_modulus;
+            self.viscosity_pressure = psi0
+                .iter()
+                .zip(&g0)
+                .map(|(psi, g)| g * beta * psi.max(0.0))
+                .collect();
+            let mut warm = (psi0, g0);
+            let mut change = f64::INFINITY;
+            let mut converged = None;
+            for _ in 0..VISCOSITY_PICARD_MAX {
+                let core = self.step_core(input, bdf2, backward_euler, warm.clone())?;
+                change = self.update_viscosity_pressure(&core, alpha);
+                if change <= VISCOSITY_PICARD_TOLERANCE {
+                    converged = Some(core);
+                    break;
+                }
+                warm = (core.psi.clone(), core.g.clone());
+            }
+            converged.ok_or(ReynoldsError::ViscosityNotConverged {
+                iterations: VISCOSITY_PICARD_MAX,
+                change,
+                tolerance: VISCOSITY_PICARD_TOLERANCE,
+            })?
+        } else {
+            self.step_core(input, bdf2, backward_euler, (psi0, g0))?
+        };
+        let sol = outputs::film_solution(
+            &self.params,
+            &input.conditions,
+            input.eccentricity_ratio,
+            &core,
+            &self.viscosity_field,
+        );
+        let new_state = self.state_after(&core, input, old.content);
+        Ok((sol, new_state))
+    }
+
+    /// A time step needs the groove supply model, a positive finite Δt, a state of this grid,
+    /// no deformation (steady solves only) and |ε| < 1 at the old level.
+    fn check_step(&self, state: &FilmState, input: &StepInput) -> Result<(), ReynoldsError> {
         if self.params.supply != SupplyModel::Grooves {
             return Err(ReynoldsError::Unsupported {
                 what: "solve_step: the axial supply line at h_max is a steady model (use SupplyModel::Grooves)",
@@ -741,35 +799,39 @@ impl ReynoldsSolver {
                 what: "a film deformation is supported in steady solves only",
             });
         }
-        check_eps(state.eccentricity_ratio)?;
-        self.set_grid(0.0)?;
+        check_eps(state.eccentricity_ratio)
+    }
+
+    /// What the time scheme takes from the old level: the content hⁿφⁿ, the net outflow Dⁿ
+    /// (Crank–Nicolson), and for BDF2 with a previous level the equivalent backward-Euler
+    /// step Δt/a₀ with old content (a₁ cⁿ − a₂ cⁿ⁻¹)/a₀ ([`TimeScheme::bdf2_coefficients`]).
+    fn old_time_level(&self, state: &FilmState, input: &StepInput) -> OldLevel {
+        let n = self.grid.len();
         let old_h = FilmThickness::new(
             &self.grid,
             self.params.clearance,
             state.eccentricity_ratio,
             None,
         );
-        let old_content: Vec<f64> = old_h
+        let content: Vec<f64> = old_h
             .node
             .iter()
             .zip(state.density_ratio.iter())
             .map(|(h, phi)| h * phi)
             .collect();
-        let old_outflow: Option<Vec<f64>> = match self.params.time_scheme {
+        let outflow = match self.params.time_scheme {
             TimeScheme::CrankNicolson => state
                 .net_outflow
                 .as_ref()
                 .map(|a| a.iter().copied().collect()),
             TimeScheme::BackwardEuler | TimeScheme::Bdf2 => None,
         };
-        // BDF2 as backward Euler with Δt/a₀ and old content (a₁ cⁿ − a₂ cⁿ⁻¹)/a₀ (TimeScheme).
-        let bdf2: Option<(f64, Vec<f64>)> = match (&self.params.time_scheme, &state.previous_level)
-        {
+        let bdf2 = match (&self.params.time_scheme, &state.previous_level) {
             (TimeScheme::Bdf2, Some((previous, dt_prev)))
                 if previous.len() == n && *dt_prev > 0.0 && dt_prev.is_finite() =>
             {
                 let (a0, a1, a2) = TimeScheme::bdf2_coefficients(input.dt / dt_prev);
-                let history = old_content
+                let history = content
                     .iter()
                     .zip(previous.iter())
                     .map(|(c, cp)| (a1 * c - a2 * cp) / a0)
@@ -778,88 +840,28 @@ impl ReynoldsSolver {
             }
             _ => None,
         };
-        let first = match start {
-            Some(f) if f.density_ratio.len() == n && f.full_film.len() == n => f,
-            Some(f) => {
-                return Err(ReynoldsError::InvalidParameter {
-                    name: "start",
-                    value: f.density_ratio.len() as f64,
-                    reason: "start fields do not match the grid size",
-                });
-            }
-            None => state,
-        };
-        let psi0: Vec<f64> = first.density_ratio.iter().map(|phi| phi - 1.0).collect();
-        let g0: Vec<f64> = first
-            .full_film
-            .iter()
-            .map(|&f| if f { 1.0 } else { 0.0 })
-            .collect();
-        let backward_euler = TimeTerm::Step {
-            dt: input.dt,
-            old_content: &old_content,
-            old_outflow: old_outflow.as_deref(),
-        };
-        let alpha = self
-            .params
-            .viscosity_model
-            .map_or(0.0, |m| m.pressure_coefficient);
-        let core = if alpha > 0.0 {
-            // Picard on the viscosity field, as in steady solves, started from the pressure of
-            // the start film (the previous step's or Newton iterate's film, close to this one:
-            // the low, physical branch of p ∝ μ₀ exp(α p)).
-            let beta = self.params.bulk_modulus;
-            self.viscosity_pressure = psi0
-                .iter()
-                .zip(&g0)
-                .map(|(psi, g)| g * beta * psi.max(0.0))
-                .collect();
-            let mut warm = (psi0, g0);
-            let mut change = f64::INFINITY;
-            let mut converged = None;
-            for _ in 0..VISCOSITY_PICARD_MAX {
-                let core = self.step_core(input, bdf2.as_ref(), backward_euler, warm.clone())?;
-                change = self.update_viscosity_pressure(&core, alpha);
-                if change <= VISCOSITY_PICARD_TOLERANCE {
-                    converged = Some(core);
-                    break;
-                }
-                warm = (core.psi.clone(), core.g.clone());
-            }
-            converged.ok_or(ReynoldsError::ViscosityNotConverged {
-                iterations: VISCOSITY_PICARD_MAX,
-                change,
-                tolerance: VISCOSITY_PICARD_TOLERANCE,
-            })?
-        } else {
-            self.step_core(input, bdf2.as_ref(), backward_euler, (psi0, g0))?
-        };
-        let sol = outputs::film_solution(
-            &self.params,
-            &input.conditions,
-            input.eccentricity_ratio,
-            &core,
-            &self.viscosity_field,
-        );
-        let mut out = vec![0.0; n];
+        OldLevel {
+            content,
+            outflow,
+            bdf2,
+        }
+    }
+
+    /// The film state after a step: φ and g of the converged core, its net outflow (the next
+    /// Crank–Nicolson step's Dⁿ) and this step's old content (the next BDF2 step's cⁿ⁻¹).
+    fn state_after(&self, core: &Core, input: &StepInput, old_content: Vec<f64>) -> FilmState {
+        let mut out = vec![0.0; self.grid.len()];
         discretization::net_outflow(&core.grid, &core.flux_theta, &core.flux_z, &mut out);
         let shape = (self.params.grid.n_theta, self.params.grid.n_z);
-        let new_state = FilmState {
+        let field = |v: Vec<f64>| Array2::from_shape_vec(shape, v).expect("grid shape");
+        FilmState {
             eccentricity_ratio: input.eccentricity_ratio,
-            density_ratio: Array2::from_shape_vec(
-                shape,
-                core.psi.iter().map(|p| 1.0 + p).collect(),
-            )
-            .expect("grid shape"),
+            density_ratio: field(core.psi.iter().map(|p| 1.0 + p).collect()),
             full_film: Array2::from_shape_vec(shape, core.g.iter().map(|&g| g > 0.5).collect())
                 .expect("grid shape"),
-            net_outflow: Some(Array2::from_shape_vec(shape, out).expect("grid shape")),
-            previous_level: Some((
-                Array2::from_shape_vec(shape, old_content).expect("grid shape"),
-                input.dt,
-            )),
-        };
-        Ok((sol, new_state))
+            net_outflow: Some(field(out)),
+            previous_level: Some((field(old_content), input.dt)),
+        }
     }
 
     /// The exact Jacobian ∂F/∂ε of the film force of the last solve (a step or a steady film),
@@ -1586,6 +1588,43 @@ impl PivotRule {
             Pivot::Single(k.expect("infeasible > 0"))
         }
     }
+}
+
+/// The old time level of a step ([`ReynoldsSolver::old_time_level`]).
+struct OldLevel {
+    /// hⁿ φⁿ per node.
+    content: Vec<f64>,
+    /// Dⁿ (Crank–Nicolson only).
+    outflow: Option<Vec<f64>>,
+    /// BDF2's (Δt/a₀, (a₁ cⁿ − a₂ cⁿ⁻¹)/a₀) when a previous level exists.
+    bdf2: Option<(f64, Vec<f64>)>,
+}
+
+/// The Newton start ψ⁰ = φ − 1, g⁰ of a step: the `start` film when given (of this grid's
+/// size `n`), else the old level's.
+fn start_fields(
+    state: &FilmState,
+    start: Option<&FilmState>,
+    n: usize,
+) -> Result<(Vec<f64>, Vec<f64>), ReynoldsError> {
+    let first = match start {
+        Some(f) if f.density_ratio.len() == n && f.full_film.len() == n => f,
+        Some(f) => {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "start",
+                value: f.density_ratio.len() as f64,
+                reason: "start fields do not match the grid size",
+            });
+        }
+        None => state,
+    };
+    let psi0 = first.density_ratio.iter().map(|phi| phi - 1.0).collect();
+    let g0 = first
+        .full_film
+        .iter()
+        .map(|&f| if f { 1.0 } else { 0.0 })
+        .collect();
+    Ok((psi0, g0))
 }
 
 /// σ₀ of the steady solves' pseudo-time shift (module docs).
