@@ -1195,6 +1195,42 @@ impl ReynoldsSolver {
         conditions: &OperatingConditions,
         warm: Option<(Vec<f64>, Vec<f64>)>,
     ) -> Result<Prepared, ReynoldsError> {
+        self.check_conditions(eps, conditions)?;
+        let p = &self.params;
+        let theta0 = match p.supply {
+            SupplyModel::Grooves => 0.0,
+            SupplyModel::AxialLineAtMaxGap => {
+                if eps[0] == 0.0 && eps[1] == 0.0 {
+                    0.0
+                } else {
+                    (-eps[1]).atan2(-eps[0])
+                }
+            }
+        };
+        self.set_grid(theta0)?;
+        let h = FilmThickness::new(
+            &self.grid,
+            self.params.clearance,
+            eps,
+            self.deformation.as_ref(),
+        );
+        if self.deformation.is_some() {
+            h.check_positive(&self.grid)?;
+        }
+        self.set_viscosity_field(eps, conditions);
+        self.set_face_coefficients(&h);
+        let (psi, g) = self.boundary_values(conditions, warm);
+        let speed = self.params.radius * (conditions.journal_speed - conditions.bearing_speed);
+        Ok(Prepared { h, psi, g, speed })
+    }
+
+    /// |ε| < 1 (any finite ε with a deformation, whose gap is checked instead), one finite feed
+    /// pressure per groove.
+    fn check_conditions(
+        &self,
+        eps: [f64; 2],
+        conditions: &OperatingConditions,
+    ) -> Result<(), ReynoldsError> {
         match &self.deformation {
             None => check_eps(eps)?,
             Some(_) if !(eps[0].is_finite() && eps[1].is_finite()) => {
@@ -1220,64 +1256,74 @@ impl ReynoldsSolver {
                 });
             }
         }
-        let theta0 = match p.supply {
-            SupplyModel::Grooves => 0.0,
-            SupplyModel::AxialLineAtMaxGap => {
-                if eps[0] == 0.0 && eps[1] == 0.0 {
-                    0.0
-                } else {
-                    (-eps[1]).atan2(-eps[0])
-                }
-            }
-        };
-        self.set_grid(theta0)?;
+        Ok(())
+    }
+
+    /// μ per node from the viscosity model (when there is one): its temperature at the node's
+    /// angle from the supply in the direction of the surface motion (the supply line at h_max,
+    /// else the first groove's centre, else — fed from the ends — h_max), at the last Picard
+    /// pressure.
+    fn set_viscosity_field(&mut self, eps: [f64; 2], conditions: &OperatingConditions) {
         let p = &self.params;
+        let Some(model) = &p.viscosity_model else {
+            return;
+        };
         let grid = &self.grid;
-        let n = grid.len();
-        let h = FilmThickness::new(grid, p.clearance, eps, self.deformation.as_ref());
-        if self.deformation.is_some() {
-            h.check_positive(grid)?;
-        }
-        let beta = p.bulk_modulus;
         let nz = grid.n_z;
-        if let Some(model) = &p.viscosity_model {
-            // θ from the supply in the direction of the surface motion: the supply line at
-            // h_max, else the first groove's centre, else (fed from the ends) h_max.
-            let supply = match (p.supply, p.grooves.first()) {
-                (SupplyModel::AxialLineAtMaxGap, _) | (SupplyModel::Grooves, None) => {
-                    (-eps[1]).atan2(-eps[0])
-                }
-                (SupplyModel::Grooves, Some(g)) => g.center_angle,
-            };
-            let sign = if conditions.journal_speed - conditions.bearing_speed < 0.0 {
-                -1.0
-            } else {
-                1.0
-            };
-            for k in 0..n {
-                let pressure = self.viscosity_pressure.get(k).copied().unwrap_or(0.0);
-                self.viscosity_field[k] = model.at_cell(
-                    grid.theta(k / nz),
-                    0.5 * grid.d_theta,
-                    supply,
-                    sign,
-                    pressure,
-                );
+        let supply = match (p.supply, p.grooves.first()) {
+            (SupplyModel::AxialLineAtMaxGap, _) | (SupplyModel::Grooves, None) => {
+                (-eps[1]).atan2(-eps[0])
             }
+            (SupplyModel::Grooves, Some(g)) => g.center_angle,
+        };
+        let sign = if conditions.journal_speed - conditions.bearing_speed < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        for k in 0..grid.len() {
+            let pressure = self.viscosity_pressure.get(k).copied().unwrap_or(0.0);
+            self.viscosity_field[k] = model.at_cell(
+                grid.theta(k / nz),
+                0.5 * grid.d_theta,
+                supply,
+                sign,
+                pressure,
+            );
         }
-        for k in 0..n {
+    }
+
+    /// The pressure-flux coefficients β h³/(12 μ) at the east θ-faces (exact face h) and the
+    /// north z-faces (mean h), μ the mean of the two nodes'.
+    fn set_face_coefficients(&mut self, h: &FilmThickness) {
+        let grid = &self.grid;
+        let (beta, nz) = (self.params.bulk_modulus, grid.n_z);
+        let mu = &self.viscosity_field;
+        for k in 0..grid.len() {
             let ie = (k / nz + 1) % grid.n_theta;
-            let mu_e = 0.5 * (self.viscosity_field[k] + self.viscosity_field[ie * nz + k % nz]);
+            let mu_e = 0.5 * (mu[k] + mu[ie * nz + k % nz]);
             self.k_theta[k] = beta * h.face_theta[k].powi(3) / (12.0 * mu_e);
             if k % nz + 1 < nz {
                 let hf = 0.5 * (h.node[k] + h.node[k + 1]);
-                let mu_n = 0.5 * (self.viscosity_field[k] + self.viscosity_field[k + 1]);
+                let mu_n = 0.5 * (mu[k] + mu[k + 1]);
                 self.k_z[k] = beta * hf.powi(3) / (12.0 * mu_n);
             } else {
                 self.k_z[k] = 0.0;
             }
         }
-        // Dirichlet values and their switch.
+    }
+
+    /// The Dirichlet values ψ and switch g: ambient at the ends and on the supply line; the
+    /// feed pressure in a groove, or its cut-off film fraction when the feed is below p_cav.
+    /// The Newton start is `warm` (ψ, g) or a full film at ambient, with these values imposed.
+    fn boundary_values(
+        &mut self,
+        conditions: &OperatingConditions,
+        warm: Option<(Vec<f64>, Vec<f64>)>,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let p = &self.params;
+        let (grid, beta) = (&self.grid, p.bulk_modulus);
+        let n = grid.len();
         let psi_amb = (p.ambient_pressure - p.cavitation_pressure) / beta;
         let (mut psi, mut g) = match warm {
             Some((psi, g)) => (psi, g),
@@ -1304,8 +1350,7 @@ impl ReynoldsSolver {
                 }
             }
         }
-        let speed = p.radius * (conditions.journal_speed - conditions.bearing_speed);
-        Ok(Prepared { h, psi, g, speed })
+        (psi, g)
     }
 
     /// The complementarity problem of one solve (module docs): the prepared film, the
