@@ -58,6 +58,28 @@ pub struct PerformancePoint {
 
 /// Evaluate the performance at eccentricity ratio vector `eps` (bearing frame, |ε| < 1) under
 /// the load `load` (N, force on the journal, bearing frame).
+///
+/// ```
+/// use jbearing_solvers::mobility::{performance_at, BookerShortBearing, MobilityParams};
+/// use std::f64::consts::PI;
+///
+/// // A centred journal without rotation under W: the short film's squeeze force is
+/// // (π/2) μ R L³ v / c³ along v, so it sinks along W at v = 2 W c³ / (π μ R L³), dissipating
+/// // W·v, with both ends together leaking 2 R L v.
+/// let params = MobilityParams {
+///     radius: 0.02, length: 0.01, radial_clearance: 40e-6, viscosity: 0.02,
+///     omega_journal: 0.0, omega_bearing: 0.0,
+/// };
+/// let model = BookerShortBearing { length_to_diameter: params.length_to_diameter() };
+/// let w = 1000.0;
+/// let point = performance_at(&params, &model, [0.0, 0.0], [0.0, -w]);
+/// let c = params.radial_clearance;
+/// let v = 2.0 * w * c.powi(3) / (PI * params.viscosity * params.radius * params.length.powi(3));
+/// let [ux, uy] = point.squeeze_rate;
+/// assert!(ux.abs() < 1e-9 * v / c && (uy * c + v).abs() < 1e-9 * v);
+/// assert!(point.shear_power == 0.0 && (point.power_loss - w * v).abs() < 1e-9 * w * v);
+/// assert!((point.side_flow - 2.0 * params.radius * params.length * v).abs() < 1e-9 * point.side_flow);
+/// ```
 pub fn performance_at<M: MobilityModel + ?Sized>(
     params: &MobilityParams,
     model: &M,
