@@ -453,7 +453,7 @@ fn reynolds_film_and_sweeps_of_mechanism_cases() {
     film.grid.n_z = 9;
     let p_cav = film.cavitation_pressure;
     j.film = jbearing_solvers::mechanism::JointFilm::Reynolds(Box::new(film));
-    p.integrator = jbearing_solvers::mechanism::Integrator::bdf2_default();
+    p.integrator = jbearing_solvers::mechanism::Integrator::bdf2_controlled();
     p.field_snapshots = jbearing_solvers::mechanism::DEFAULT_FIELD_SNAPSHOTS;
     let direct = solve_mechanism(&p).unwrap();
     assert!(direct.info.film_steps > 0);

@@ -154,8 +154,10 @@ pub struct IntegratorSection {
     pub absolute_tolerance: Option<f64>,
     pub steps_per_turn: Option<usize>,
     /// BDF2 local error tolerance (in ε): error control with steps of at most one turn /
-    /// `steps_per_turn`; absent: fixed steps.
+    /// `steps_per_turn` (default `DEFAULT_BDF2_ERROR_TOLERANCE`).
     pub error_tolerance: Option<f64>,
+    /// BDF2 with fixed steps of one turn / `steps_per_turn` instead of error control.
+    pub fixed_steps: Option<bool>,
     pub newton_tolerance: Option<f64>,
     pub max_newton_iterations: Option<usize>,
 }
@@ -570,6 +572,7 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
                     for (key, bad) in [
                         ("steps_per_turn", given(|s| s.steps_per_turn.is_some())),
                         ("error_tolerance", given(|s| s.error_tolerance.is_some())),
+                        ("fixed_steps", given(|s| s.fixed_steps.is_some())),
                         ("newton_tolerance", given(|s| s.newton_tolerance.is_some())),
                         (
                             "max_newton_iterations",
@@ -624,9 +627,9 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
                         error_tolerance,
                         newton_tolerance,
                         max_newton_iterations,
-                    } = Integrator::bdf2_default()
+                    } = Integrator::bdf2_controlled()
                     else {
-                        unreachable!("bdf2_default is Bdf2")
+                        unreachable!("bdf2_controlled is Bdf2")
                     };
                     let steps = s.and_then(|s| s.steps_per_turn).unwrap_or(steps_per_turn);
                     if steps == 0 || !steps.is_multiple_of(m.samples_per_turn) {
@@ -649,9 +652,19 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
                     if iterations == 0 {
                         return Err(ctx.err(&ik("max_newton_iterations"), "must be at least 1"));
                     }
-                    let error_tolerance = match s.and_then(|s| s.error_tolerance) {
-                        Some(v) => Some(ctx.positive(&ik("error_tolerance"), v)?),
-                        None => error_tolerance,
+                    let error_tolerance = match (
+                        s.and_then(|s| s.error_tolerance),
+                        s.and_then(|s| s.fixed_steps).unwrap_or(false),
+                    ) {
+                        (Some(_), true) => {
+                            return Err(ctx.err(
+                                &ik("error_tolerance"),
+                                "fixed_steps = true has no error control: remove one of the two",
+                            ));
+                        }
+                        (Some(v), false) => Some(ctx.positive(&ik("error_tolerance"), v)?),
+                        (None, true) => None,
+                        (None, false) => error_tolerance,
                     };
                     Integrator::Bdf2 {
                         steps_per_turn: steps,
@@ -751,6 +764,40 @@ mod tests {
         assert_eq!(ja.contact, jb.contact);
         assert_eq!(ja.length, jb.length);
         assert!(case.ideal_reference && case.plots);
+    }
+
+    /// BDF2 runs under error control unless the file asks for fixed steps; asking for both is
+    /// an error naming the key.
+    #[test]
+    fn bdf2_is_error_controlled_unless_fixed_steps_are_asked_for() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/flores2009_slider_crank.toml");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let with = |integrator: &str| {
+            text.replace(
+                "method = \"radau5\"",
+                &format!("method = \"bdf2\"\n{integrator}"),
+            )
+        };
+        let tol = |case: MechanismCase| match case.params.integrator {
+            Integrator::Bdf2 {
+                error_tolerance, ..
+            } => error_tolerance,
+            other => panic!("{other:?}"),
+        };
+        let default = MechanismCase::from_text(&with(""), &path).unwrap();
+        assert_eq!(default.params.integrator, Integrator::bdf2_controlled());
+        let fixed = MechanismCase::from_text(&with("fixed_steps = true"), &path).unwrap();
+        assert_eq!(tol(fixed), None);
+        let given = MechanismCase::from_text(&with("error_tolerance = 1e-6"), &path).unwrap();
+        assert_eq!(tol(given), Some(1e-6));
+        let both = with("fixed_steps = true\nerror_tolerance = 1e-6");
+        let err = MechanismCase::from_text(&both, &path)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("mechanism.integrator.error_tolerance"),
+            "{err}"
+        );
     }
 
     #[test]

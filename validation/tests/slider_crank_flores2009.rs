@@ -277,7 +277,7 @@ fn integrators_agree_and_bdf2_converges_at_second_order() {
         errs.push(de);
     }
     // The default Newton tolerance (1e-7 in ε) changes nothing visible.
-    p.integrator = Integrator::bdf2_default();
+    p.integrator = Integrator::bdf2_fixed();
     let s = solve_mechanism(&p).unwrap();
     let n = p.samples_per_turn;
     let de_default = r.eccentricity[n..]
@@ -549,7 +549,8 @@ fn clearance_and_viscosity_study() {
 
 #[test]
 fn closed_form_films_against_the_reynolds_film() {
-    // Every closed form (Radau5) and the mass-conserving Reynolds film (BDF2, 1° steps; a
+    // Every closed form (Radau5) and the mass-conserving Reynolds film (BDF2 under error
+    // control, its default; a
     // 60 × 15 grid to keep the test short — the default 120 × 31 is timed by
     // `mechanism_timing`) at each point of the study; the second turn is reported.
     println!(
@@ -607,12 +608,20 @@ fn closed_form_films_against_the_reynolds_film() {
                         h_of.insert(name.clone(), h2);
                         // Where the film stays thick (c ≤ 0.2 mm at 400 cP: h_min ≫ 3 µm) the
                         // joint force is the slider's and rod's inertia whatever the film:
-                        // within 10 % of the ideal joint's peak. (Thin films bounce the
-                        // journal and add squeeze peaks: no such bound there.)
+                        // within 10 % of the ideal joint's peak in the second turn. (Thin films
+                        // bounce the journal and add squeeze peaks: no such bound there. The
+                        // first turn holds the start from rest — journal centred while the
+                        // slider moves — whose ringing the Reynolds film's error control
+                        // resolves: 2991 N at 1° for c = 0.1 mm, 400 cP, where fixed 1° steps
+                        // sampled 2842 N.)
+                        let peak2 = s.loads[n..]
+                            .iter()
+                            .map(|l| norm(l.rod_slider))
+                            .fold(0.0, f64::max);
                         if mu > 0.1 && c < 0.3e-3 {
                             assert!(
-                                (s.info.max_joint_force / peak_ideal - 1.0).abs() < 0.1,
-                                "{name} c {c} μ {mu}"
+                                (peak2 / peak_ideal - 1.0).abs() < 0.1,
+                                "{name} c {c} μ {mu}: second turn {peak2}"
                             );
                         }
                     }
@@ -1062,8 +1071,8 @@ fn turn_to_turn_map_contracts_to_a_periodic_orbit() {
 /// Issue 16, gap 3: BDF2 under error control. Fixed steps put the impact peaks of the c =
 /// 0.5 mm, 40 cP run where the step grid happens to fall (peak contact force 9779, 11447,
 /// 11211, 10613 N at 360 … 2880 steps per turn: no convergence in sight); with the local error
-/// estimate the peak converges as the tolerance falls, towards the independent Radau5 run
-/// (order 5, rtol 1e-8).
+/// estimate (on ε) the peak converges as the tolerance falls, towards the independent Radau5
+/// run (order 5, rtol 1e-8).
 #[test]
 fn bdf2_error_control_makes_the_impact_peak_converge() {
     let c = 0.5e-3;
@@ -1083,34 +1092,113 @@ fn bdf2_error_control_makes_the_impact_peak_converge() {
         assert!(!s.contact_events.is_empty(), "tol {tol}: impacts expected");
         (s.info.max_joint_force, s.info.steps, s.info.rejected_steps)
     };
-    let (reference, ref_steps, _) = run_tol(&mut p, 1e-7);
-    println!("Radau5 peak {radau:.1} N; BDF2 tol 1e-7 peak {reference:.1} N ({ref_steps} steps)");
+    println!("Radau5 peak {radau:.1} N");
     let mut diffs = Vec::new();
-    for tol in [1e-3, 1e-4, 1e-5, 1e-6] {
+    for tol in [1e-3, 1e-4, 1e-5, 1e-6, 1e-7] {
         let (peak, steps, rejected) = run_tol(&mut p, tol);
         println!(
-            "tol {tol:e}: peak contact force {peak:.1} N, − reference {:+.1} N, {steps} steps, {rejected} rejected",
-            peak - reference
+            "tol {tol:e}: peak contact force {peak:.1} N, − Radau5 {:+.1} N, {steps} steps, {rejected} rejected",
+            peak - radau
         );
-        diffs.push((peak - reference).abs());
+        diffs.push((peak - radau).abs());
     }
-    // The tight run agrees with Radau5 to 0.05 % (two methods, two error controls).
-    assert!(
-        (reference / radau - 1.0).abs() < 5e-4,
-        "{reference} vs {radau}"
-    );
     // The peak's error shrinks with the tolerance: BDF2's local error is O(h³), so h ∝ tol^{1/3}
-    // and the global error ∝ h² ∝ tol^{2/3}: a factor 10^{2/3} ≈ 4.6 per decade (measured
-    // 4.2–5.5); at least 3 required.
-    for w in diffs.windows(2) {
-        assert!(w[1] < w[0] / 3.0, "{diffs:?}");
+    // and the global error ∝ h² ∝ tol^{2/3}: a factor 10^{2/3} ≈ 4.6 per decade once
+    // asymptotic (measured 2.5, 3.5, 4.4, 4.3 from 1e-3 on): at least 2 on every decade, at
+    // least 3 from 1e-5 on.
+    for (k, w) in diffs.windows(2).enumerate() {
+        let factor = if k >= 2 { 3.0 } else { 2.0 };
+        assert!(w[1] < w[0] / factor, "{diffs:?}");
     }
-    // The recommended tolerance (`Integrator::bdf2_controlled`) puts the peak within 0.5 % of
-    // the tight run (measured 0.33 %).
+    // The tightest run agrees with Radau5 to 0.1 % (two methods, two error controls; measured
+    // 0.07 %).
+    assert!(diffs[4] < 1e-3 * radau, "{diffs:?} of {radau}");
+    // The default tolerance (`Integrator::bdf2_controlled`, 1e-5) puts the peak within 2 % of
+    // Radau5 (measured 1.4 %).
     let default_tol = jbearing_solvers::mechanism::DEFAULT_BDF2_ERROR_TOLERANCE;
     let (peak, ..) = run_tol(&mut p, default_tol);
     assert!(
-        (peak / reference - 1.0).abs() < 5e-3,
-        "default: {peak} vs {reference}"
+        (peak / radau - 1.0).abs() < 2e-2,
+        "default: {peak} vs {radau}"
+    );
+}
+
+/// Issue 16, gap 1: the Reynolds film under error control (its default integrator). The peak
+/// joint force (the start transient's, at 1°), the peak crank moment and h_min converge as the
+/// tolerance falls, towards an independent reference: fixed-step BDF2 at 5760 and 23040 steps
+/// per turn, Richardson-extrapolated (second order, `integrators_agree_and_bdf2_converges_at_
+/// second_order`). A coarse 20 × 5 film grid: the question is the time integration, and every
+/// run here solves the same discrete film.
+#[test]
+fn reynolds_film_under_error_control_converges() {
+    let c = 0.2e-3;
+    let mut joint = LubricatedJointParams::with_clearance(c, 0.4);
+    let mut rp = joint.reynolds_params();
+    rp.grid = GridParams {
+        n_theta: 20,
+        n_z: 5,
+    };
+    joint.film = JointFilm::Reynolds(Box::new(rp));
+    let mut p = MechanismParams::new(
+        SliderCrankParams::flores2009(),
+        RodSliderJoint::Lubricated(joint),
+    );
+    p.field_snapshots = 0;
+    // The default the app runs: error control at the default tolerance.
+    assert_eq!(p.integrator, Integrator::bdf2_controlled());
+    let run = |p: &mut MechanismParams, steps_per_turn: usize, tol: Option<f64>| {
+        p.integrator = Integrator::Bdf2 {
+            steps_per_turn,
+            error_tolerance: tol,
+            newton_tolerance: 1e-9,
+            max_newton_iterations: 30,
+        };
+        let s = solve_mechanism(p).unwrap_or_else(|e| panic!("{steps_per_turn} {tol:?}: {e}"));
+        let h = s.info.min_film_thickness.unwrap();
+        (
+            s.info.max_joint_force,
+            s.info.max_crank_moment,
+            h,
+            s.info.steps,
+        )
+    };
+    let (f1, m1, h1, _) = run(&mut p, 5760, None);
+    let (f2, m2, h2, _) = run(&mut p, 23040, None);
+    // Richardson for a second-order method and a step ratio of 4.
+    let rich = |a: f64, b: f64| b + (b - a) / 15.0;
+    let (f_ref, m_ref, h_ref) = (rich(f1, f2), rich(m1, m2), rich(h1, h2));
+    println!(
+        "fixed 5760/23040 per turn: peak force {f1:.1}/{f2:.1} N, moment {m1:.3}/{m2:.3} N m, \
+         h_min {:.4}/{:.4} µm; reference {f_ref:.1} N, {m_ref:.3} N m, {:.4} µm",
+        1e6 * h1,
+        1e6 * h2,
+        1e6 * h_ref
+    );
+    let mut errs = Vec::new();
+    for tol in [1e-4, 1e-5, 1e-6] {
+        let (f, m, h, steps) = run(&mut p, 360, Some(tol));
+        println!(
+            "tol {tol:e}: peak force {f:.1} N ({:+.1}), moment {m:.3} N m ({:+.3}), h_min {:.4} µm ({:+.2} nm), {steps} steps",
+            f - f_ref,
+            m - m_ref,
+            1e6 * h,
+            1e9 * (h - h_ref)
+        );
+        errs.push([(f - f_ref).abs(), (m - m_ref).abs(), (h - h_ref).abs()]);
+    }
+    // Measured errors at 1e-4, 1e-5, 1e-6: force 108, 21, 4 N (factor ~5 per decade, tol^{2/3}
+    // gives 4.6), moment 2.1, 0.26, 0.06 N m: each decade shrinks both at least 3×. (h_min moves
+    // by nanometres only: 16, 7, 1 nm of 62 µm; asserted to shrink and to stay below 20 nm.)
+    for w in errs.windows(2) {
+        assert!(w[1][0] < w[0][0] / 3.0, "force {errs:?}");
+        assert!(w[1][1] < w[0][1] / 3.0, "moment {errs:?}");
+        assert!(w[1][2] < w[0][2], "h_min {errs:?}");
+    }
+    assert!(errs.iter().all(|e| e[2] < 20e-9), "h_min {errs:?}");
+    // The default tolerance: the peak force within 1.5 % and the moment within 0.5 % of the
+    // reference (measured 0.8 %, 0.2 %).
+    assert!(
+        errs[1][0] < 1.5e-2 * f_ref && errs[1][1] < 5e-3 * m_ref,
+        "{errs:?}"
     );
 }

@@ -98,9 +98,9 @@
 //!   memory that a right-hand side cannot carry. (The crate's event detection does not look
 //!   inside the first step of a run: every run starts with a step of 10⁻⁸ of a turn, so a
 //!   crossing there would need the journal to cover e₀/10 in 10⁻¹⁰ s.)
-//! - Reynolds film (or any film for a cross-check): [`Integrator::Bdf2`] — fixed steps of one
-//!   turn / `steps_per_turn` (default 1°), or, with `error_tolerance`, steps under error control
-//!   of at most that length ending on that grid; the
+//! - Reynolds film (or any film for a cross-check): [`Integrator::Bdf2`] — by default steps
+//!   under error control (`error_tolerance`) of at most one turn / `steps_per_turn` (1°) ending
+//!   on that grid, or (`error_tolerance` None) fixed steps of that length; the
 //!   journal's (ε, ε̇, ε̈) by the same BDF2 difference formulas the Reynolds film uses for its
 //!   squeeze term ([`crate::reynolds::TimeScheme::Bdf2`], backward-Euler start), and per step a
 //!   Newton iteration on ε^{n+1} of
@@ -125,19 +125,30 @@
 //!   Reynolds film's own variable-step BDF2 follows the same steps. In dry contact (s = 1) the film is still stepped (its state
 //!   must follow) at the eccentricity clamped to the end of the blend band.
 //!
-//!   Error control (`error_tolerance`, e.g. [`DEFAULT_BDF2_ERROR_TOLERANCE`]): BDF2 on the
-//!   first-order system y = (ε, ε̇) has the local error −(2/9) h³ y‴ (constant steps); the
-//!   predictor through y^{n−1}, y^n with the slope ẏ^n has h²(h + h_p) y‴/6, so Milne's device
-//!   gives LTE ≈ 0.4 |y_c − y_p| (h = h_p), measured as the larger of the ε error and the ε̇
-//!   error over |ω| (ε per radian of crank). A step is accepted when LTE ≤ tol; the next is
-//!   h · 0.9 (tol / LTE)^{1/3}, between 0.2 h and 2 h (BDF2's variable-step formulas stay
+//!   Error control (`error_tolerance`, default [`DEFAULT_BDF2_ERROR_TOLERANCE`], the default
+//!   integrator of the Reynolds film): BDF2 has the local error −(2/9) h³ ε‴ (constant steps);
+//!   the predictor through ε^{n−1}, ε^n with the slope ε̇^n has h²(h + h_p) ε‴/6, so Milne's
+//!   device gives LTE ≈ 0.4 |ε_c − ε_p| (h = h_p). A step is accepted when LTE ≤ tol; the next
+//!   is h · 0.9 (tol / LTE)^{1/3}, between 0.2 h and 2 h (BDF2's variable-step formulas stay
 //!   zero-stable below a ratio of 1 + √2), never past the next grid point, so that samples
 //!   and film snapshots fall on step ends; a rejected step or a failed Newton is retried
-//!   shorter. The Newton tolerance is tightened on short steps to 1 % of tol · min(1, h|ω|):
+//!   shorter (the film state is that of t^n until a step is accepted: each trial steps the
+//!   film from it). The estimate is on the position ε only. An estimate on ε̇ as well (tried:
+//!   the ε̇ error per radian of crank beside the ε error) made the Reynolds film take ~2900
+//!   steps per turn with a third of them rejected (40 × 11 grid, c = 0.2 mm, 400 cP; ~430
+//!   with the Pinkus–Sternlicht film), and did not finish two turns at 120 × 31 in 2.5 CPU
+//!   minutes (tolerance 1e-4): the discrete film's force is continuous in ε but its slope jumps whenever a grid
+//!   node switches between full and cavitated film, so ε̈ has a kink and the ε̇ estimate (a
+//!   difference of ε̈) a spike at every switch — erratic estimates of 1e-5 … 1e-3 on
+//!   successive steps of 0.05°, more steps on finer grids (20 × 5: 2083, 80 × 21: 2935 per
+//!   turn). The position is one integration further from those kinks: with the estimate on ε
+//!   the same run takes 477 steps per turn (15 rejected) at 1e-4, 798 (86) at the default
+//!   1e-5, and at 120 × 31 679 (46) at 1e-5. The Newton tolerance is tightened on short steps to 1 % of tol · min(1, h|ω|):
 //!   its error enters ε̇ as a₀ δε / h. Without error control an impact's peak force depends on
 //!   where the step grid falls (c = 0.5 mm, 40 cP: 9.8, 11.4, 11.2, 10.6 kN at 360 … 2880 steps
-//!   per turn); with it the peak converges as tol^{2/3} (validation test
-//!   `bdf2_error_control_makes_the_impact_peak_converge`).
+//!   per turn); with it the peak converges as the tolerance falls (validation tests
+//!   `bdf2_error_control_makes_the_impact_peak_converge`,
+//!   `reynolds_film_under_error_control_converges`).
 //!
 //! # Results
 //!
@@ -327,9 +338,8 @@ impl Integrator {
     /// the paper's case (\[Flores2009\] §8) with the Pinkus–Sternlicht film the orbit is then
     /// within 0.04 µm and the joint force within 0.3 N of Radau5's (second-order convergence:
     /// 0.01 µm at 720 steps); |Δε| ≤ 1e-7 is 0.02 nm at c = 0.2 mm, far below that. Impact
-    /// peaks depend on where the step grid falls: use [`Integrator::bdf2_controlled`] where the
-    /// journal hits the wall.
-    pub const fn bdf2_default() -> Self {
+    /// peaks depend on where the step grid falls: the default is [`Integrator::bdf2_controlled`].
+    pub const fn bdf2_fixed() -> Self {
         Integrator::Bdf2 {
             steps_per_turn: 360,
             error_tolerance: None,
@@ -338,8 +348,9 @@ impl Integrator {
         }
     }
 
-    /// BDF2 with error control: local error ≤ [`DEFAULT_BDF2_ERROR_TOLERANCE`] in ε, steps of
-    /// at most 1° (360 per turn), Newton as [`Integrator::bdf2_default`].
+    /// BDF2 with error control, the default of the Reynolds film: local error ≤
+    /// [`DEFAULT_BDF2_ERROR_TOLERANCE`] in ε, steps of at most 1° (360 per turn), Newton as
+    /// [`Integrator::bdf2_fixed`].
     pub const fn bdf2_controlled() -> Self {
         Integrator::Bdf2 {
             steps_per_turn: 360,
@@ -350,10 +361,10 @@ impl Integrator {
     }
 }
 
-/// Local error tolerance of [`Integrator::bdf2_controlled`] (absolute, in ε): the peak contact
-/// force of an impact within 0.5 % of a tight-tolerance run (validation test
-/// `bdf2_error_control_makes_the_impact_peak_converge`).
-pub const DEFAULT_BDF2_ERROR_TOLERANCE: f64 = 1e-4;
+/// Local error tolerance of [`Integrator::bdf2_controlled`] (absolute, in ε; validation tests
+/// `bdf2_error_control_makes_the_impact_peak_converge` and
+/// `reynolds_film_under_error_control_converges` measure what it buys).
+pub const DEFAULT_BDF2_ERROR_TOLERANCE: f64 = 1e-5;
 
 /// Film field snapshots per run of a Reynolds film by default (every 15° of the last turn).
 pub const DEFAULT_FIELD_SNAPSHOTS: usize = 24;
@@ -380,13 +391,13 @@ pub struct MechanismParams {
 
 impl MechanismParams {
     /// Two turns, 360 samples per turn, and the integrator that suits the joint: Radau5 for a
-    /// closed-form film, BDF2 at 360 steps per turn for the Reynolds film.
+    /// closed-form film, BDF2 under error control (steps of at most 1°) for the Reynolds film.
     pub fn new(mechanism: SliderCrankParams, joint: RodSliderJoint) -> Self {
         let (integrator, field_snapshots) = match &joint {
             RodSliderJoint::Lubricated(LubricatedJointParams {
                 film: JointFilm::Reynolds(_),
                 ..
-            }) => (Integrator::bdf2_default(), DEFAULT_FIELD_SNAPSHOTS),
+            }) => (Integrator::bdf2_controlled(), DEFAULT_FIELD_SNAPSHOTS),
             _ => (Integrator::radau5_default(), 0),
         };
         Self {
