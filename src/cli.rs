@@ -1,6 +1,6 @@
 //! The `jbearing` command line (clap derive). `main.rs` only calls [`main_with`].
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use std::io::IsTerminal;
@@ -191,240 +191,263 @@ pub fn main_with(cli: Cli) -> ExitCode {
     init_logging(cli.verbose, cli.quiet);
     match cli.command {
         Command::Check { cases, out, budget } => check(&cases, out.as_deref(), &budget.limits()),
-        Command::Run(a) => {
-            // The same progress and warnings as a batch of one.
-            let progress = Progress::for_stderr(!a.no_progress && !cli.quiet);
-            // A mechanism case (a `[mechanism]` table) has its own runner and outputs.
-            if crate::case::mechanism::is_mechanism_file(&a.case) {
-                return crate::mechanism::run_cli(&a.case, &a.out, progress);
+        Command::Run(a) => run_command(&a, cli.quiet),
+        Command::Batch(a) => batch_command(&a, cli.quiet),
+        Command::Merge { dirs, out } => merge_command(&dirs, &out),
+        Command::ClosedForm { case } => closed_form_command(&case),
+        Command::Validate { cases_dir, out } => crate::validate::run(&cases_dir, &out),
+        Command::SynthLoads { machine } => synth_loads_command(&machine),
+    }
+}
+
+/// `jbearing run CASE`: one case as a batch of one (the same progress, warnings and outputs),
+/// its summary table printed; a mechanism case goes to its own runner.
+fn run_command(a: &RunArgs, quiet: bool) -> ExitCode {
+    // The same progress and warnings as a batch of one.
+    let progress = Progress::for_stderr(!a.no_progress && !quiet);
+    // A mechanism case (a `[mechanism]` table) has its own runner and outputs.
+    if crate::case::mechanism::is_mechanism_file(&a.case) {
+        return crate::mechanism::run_cli(&a.case, &a.out, progress);
+    }
+    // One case as given (a sweep file is refused by the case reader: `batch` runs it).
+    let job = crate::sweep::CaseJob {
+        path: a.case.clone(),
+        name: crate::case::Case::from_file(&a.case).map_or_else(
+            |_| {
+                a.case
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_default()
+            },
+            |c| c.name,
+        ),
+        text: None,
+        parameters: Vec::new(),
+    };
+    let mut run = run_batch(
+        std::slice::from_ref(&job),
+        &BatchOptions {
+            out_dir: a.out.clone(),
+            jobs: 1,
+            progress,
+            limits: a.budget.limits(),
+            shard: Shard::ALL,
+            force: true,
+        },
+    );
+    let entry = run.entries.remove(0);
+    match entry.result {
+        Ok(crate::batch::JobOutcome::Mechanism(o)) => {
+            // Not reached (mechanism files take the branch above); said honestly.
+            for f in &o.files {
+                println!("wrote {}", f.display());
             }
-            // One case as given (a sweep file is refused by the case reader: `batch` runs it).
-            let job = crate::sweep::CaseJob {
-                path: a.case.clone(),
-                name: crate::case::Case::from_file(&a.case).map_or_else(
-                    |_| {
-                        a.case
-                            .file_stem()
-                            .map(|s| s.to_string_lossy().into_owned())
-                            .unwrap_or_default()
-                    },
-                    |c| c.name,
-                ),
-                text: None,
-                parameters: Vec::new(),
-            };
-            let mut run = run_batch(
-                std::slice::from_ref(&job),
-                &BatchOptions {
-                    out_dir: a.out.clone(),
-                    jobs: 1,
-                    progress,
-                    limits: a.budget.limits(),
-                    shard: Shard::ALL,
-                    force: true,
-                },
-            );
-            let entry = run.entries.remove(0);
-            match entry.result {
-                Ok(crate::batch::JobOutcome::Mechanism(o)) => {
-                    // Not reached (mechanism files take the branch above); said honestly.
-                    for f in &o.files {
-                        println!("wrote {}", f.display());
-                    }
-                    ExitCode::SUCCESS
-                }
-                Ok(crate::batch::JobOutcome::Bearing(o)) => {
-                    for f in &o.files {
-                        println!("wrote {}", f.display());
-                    }
-                    let method_failed = crate::batch::has_failed_method(&o.report);
-                    let closed_form = o.report.closed_form.clone();
-                    let elastic = o.report.elastic.as_ref().map(|e| e.format_summary());
-                    // A case that asks only for the deformable bearing has no method rows.
-                    let methods_ran = !o.report.methods.is_empty();
-                    let table = summary_table(&[crate::batch::BatchEntry {
-                        path: a.case.clone(),
-                        name: job.name.clone(),
-                        result: Ok(crate::batch::JobOutcome::Bearing(o)),
-                    }]);
-                    if methods_ran || elastic.is_none() {
-                        print!("{table}");
-                    }
-                    if let Some(t) = &closed_form {
-                        print!("{}", crate::closed_form_report::format_table(t));
-                    }
-                    if let Some(e) = &elastic {
-                        print!("{e}");
-                    }
-                    if method_failed {
-                        eprintln!("a requested method failed (the FAILED row above)");
-                        ExitCode::FAILURE
-                    } else {
-                        ExitCode::SUCCESS
-                    }
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::FAILURE
-                }
-            }
+            ExitCode::SUCCESS
         }
-        Command::Batch(a) => {
-            let paths = match collect_cases(&a.inputs) {
-                Ok(p) if !p.is_empty() => p,
-                Ok(_) => {
-                    eprintln!("error: no case files (*.toml) in {:?}", a.inputs);
-                    return ExitCode::FAILURE;
-                }
-                Err(e) => {
-                    eprintln!("error: listing {:?}: {e}", a.inputs);
-                    return ExitCode::FAILURE;
-                }
-            };
-            let all = match crate::sweep::expand_all(&paths) {
-                Ok(all) => all,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return ExitCode::FAILURE;
-                }
-            };
-            let shard = match a.shard.as_deref().map(Shard::parse).transpose() {
-                Ok(s) => s.unwrap_or(Shard::ALL),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return ExitCode::FAILURE;
-                }
-            };
-            let progress = Progress::for_stderr(!a.no_progress && !cli.quiet);
-            // Mechanism cases are jobs of the same list (pool, shards, resume, manifest, rows).
-            let run = run_batch(
-                &all,
-                &BatchOptions {
-                    out_dir: a.out.clone(),
-                    jobs: a.jobs,
-                    progress,
-                    limits: a.budget.limits(),
-                    shard,
-                    force: a.force,
-                },
-            );
-            let entries = &run.entries;
-            print!("{}", summary_table(entries));
-            for j in &run.skipped {
-                println!(
-                    "{:<26} skipped: {}.h5 exists (--force recomputes)",
-                    j.name, j.name
-                );
+        Ok(crate::batch::JobOutcome::Bearing(o)) => {
+            for f in &o.files {
+                println!("wrote {}", f.display());
             }
-            let csv = a.out.join(shard.summary_name());
-            let manifest_path = a.out.join(shard.manifest_name());
-            let manifest = Manifest::of(&all, shard, &run);
-            let write_text = |path: &std::path::Path, text: String| {
-                crate::output::write_atomically(path, |tmp| {
-                    std::fs::write(tmp, &text).map_err(|source| crate::output::OutputError::Io {
-                        action: "writing",
-                        path: path.to_path_buf(),
-                        source,
-                    })
-                })
-                .map_err(|e| e.to_string())
-            };
-            let written = std::fs::create_dir_all(&a.out)
-                .map_err(|e| e.to_string())
-                .and_then(|_| write_text(&csv, summary_csv(entries)))
-                .and_then(|_| {
-                    write_text(
-                        &manifest_path,
-                        serde_json::to_string_pretty(&manifest).expect("a manifest serialises"),
-                    )
-                });
-            if let Err(e) = written {
-                eprintln!(
-                    "error: writing {} / {}: {e}",
-                    csv.display(),
-                    manifest_path.display()
-                );
-                return ExitCode::FAILURE;
+            let method_failed = crate::batch::has_failed_method(&o.report);
+            let closed_form = o.report.closed_form.clone();
+            let elastic = o.report.elastic.as_ref().map(|e| e.format_summary());
+            // A case that asks only for the deformable bearing has no method rows.
+            let methods_ran = !o.report.methods.is_empty();
+            let table = summary_table(&[crate::batch::BatchEntry {
+                path: a.case.clone(),
+                name: job.name.clone(),
+                result: Ok(crate::batch::JobOutcome::Bearing(o)),
+            }]);
+            if methods_ran || elastic.is_none() {
+                print!("{table}");
             }
-            println!("summary: {}", csv.display());
-            let failed = entries.iter().filter(|e| e.result.is_err()).count();
-            let method_failed = entries
-                .iter()
-                .filter(|e| e.result.as_ref().is_ok_and(|o| o.has_failed_method()))
-                .count();
-            if failed > 0 || method_failed > 0 {
-                eprintln!(
-                    "{failed} of {} case(s) failed, {method_failed} more with a failed method",
-                    entries.len()
-                );
+            if let Some(t) = &closed_form {
+                print!("{}", crate::closed_form_report::format_table(t));
+            }
+            if let Some(e) = &elastic {
+                print!("{e}");
+            }
+            if method_failed {
+                eprintln!("a requested method failed (the FAILED row above)");
                 ExitCode::FAILURE
             } else {
                 ExitCode::SUCCESS
             }
         }
-        Command::Merge { dirs, out } => match crate::merge::merge(&dirs, &out) {
-            Ok(info) => {
-                let incomplete = info.incomplete();
-                println!(
-                    "wrote {} ({} cases, {} ok)",
-                    out.display(),
-                    info.cases.len(),
-                    info.cases.len() - incomplete.len()
-                );
-                for (name, status) in &incomplete {
-                    eprintln!("{name}: {status}");
-                }
-                if incomplete.is_empty() {
-                    ExitCode::SUCCESS
-                } else {
-                    eprintln!(
-                        "{} of {} cases missing or failed (listed above; NaN in the file)",
-                        incomplete.len(),
-                        info.cases.len()
-                    );
-                    ExitCode::FAILURE
-                }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `jbearing batch INPUTS…`: every case (sweeps expanded) of this shard, the summary CSV and
+/// the manifest written atomically; failure when a case or a method failed.
+fn batch_command(a: &BatchArgs, quiet: bool) -> ExitCode {
+    let paths = match collect_cases(&a.inputs) {
+        Ok(p) if !p.is_empty() => p,
+        Ok(_) => {
+            eprintln!("error: no case files (*.toml) in {:?}", a.inputs);
+            return ExitCode::FAILURE;
+        }
+        Err(e) => {
+            eprintln!("error: listing {:?}: {e}", a.inputs);
+            return ExitCode::FAILURE;
+        }
+    };
+    let all = match crate::sweep::expand_all(&paths) {
+        Ok(all) => all,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let shard = match a.shard.as_deref().map(Shard::parse).transpose() {
+        Ok(s) => s.unwrap_or(Shard::ALL),
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let progress = Progress::for_stderr(!a.no_progress && !quiet);
+    // Mechanism cases are jobs of the same list (pool, shards, resume, manifest, rows).
+    let run = run_batch(
+        &all,
+        &BatchOptions {
+            out_dir: a.out.clone(),
+            jobs: a.jobs,
+            progress,
+            limits: a.budget.limits(),
+            shard,
+            force: a.force,
+        },
+    );
+    let entries = &run.entries;
+    print!("{}", summary_table(entries));
+    for j in &run.skipped {
+        println!(
+            "{:<26} skipped: {}.h5 exists (--force recomputes)",
+            j.name, j.name
+        );
+    }
+    let csv = a.out.join(shard.summary_name());
+    let manifest_path = a.out.join(shard.manifest_name());
+    let manifest = Manifest::of(&all, shard, &run);
+    let write_text = |path: &std::path::Path, text: String| {
+        crate::output::write_atomically(path, |tmp| {
+            std::fs::write(tmp, &text).map_err(|source| crate::output::OutputError::Io {
+                action: "writing",
+                path: path.to_path_buf(),
+                source,
+            })
+        })
+        .map_err(|e| e.to_string())
+    };
+    let written = std::fs::create_dir_all(&a.out)
+        .map_err(|e| e.to_string())
+        .and_then(|_| write_text(&csv, summary_csv(entries)))
+        .and_then(|_| {
+            write_text(
+                &manifest_path,
+                serde_json::to_string_pretty(&manifest).expect("a manifest serialises"),
+            )
+        });
+    if let Err(e) = written {
+        eprintln!(
+            "error: writing {} / {}: {e}",
+            csv.display(),
+            manifest_path.display()
+        );
+        return ExitCode::FAILURE;
+    }
+    println!("summary: {}", csv.display());
+    let failed = entries.iter().filter(|e| e.result.is_err()).count();
+    let method_failed = entries
+        .iter()
+        .filter(|e| e.result.as_ref().is_ok_and(|o| o.has_failed_method()))
+        .count();
+    if failed > 0 || method_failed > 0 {
+        eprintln!(
+            "{failed} of {} case(s) failed, {method_failed} more with a failed method",
+            entries.len()
+        );
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+/// `jbearing merge DIRS… --out FILE`.
+fn merge_command(dirs: &[PathBuf], out: &Path) -> ExitCode {
+    match crate::merge::merge(dirs, out) {
+        Ok(info) => {
+            let incomplete = info.incomplete();
+            println!(
+                "wrote {} ({} cases, {} ok)",
+                out.display(),
+                info.cases.len(),
+                info.cases.len() - incomplete.len()
+            );
+            for (name, status) in &incomplete {
+                eprintln!("{name}: {status}");
             }
-            Err(e) => {
-                eprintln!("error: {e}");
+            if incomplete.is_empty() {
+                ExitCode::SUCCESS
+            } else {
+                eprintln!(
+                    "{} of {} cases missing or failed (listed above; NaN in the file)",
+                    incomplete.len(),
+                    info.cases.len()
+                );
                 ExitCode::FAILURE
             }
-        },
-        Command::ClosedForm { case } => match Case::from_file(&case) {
-            Ok(c) => {
-                let models = if c.closed_form_models.is_empty() {
-                    jbearing_solvers::closed_form::ClosedFormModel::ALL.to_vec()
-                } else {
-                    c.closed_form_models.clone()
-                };
-                let t = crate::closed_form_report::table(&c, &models);
-                print!("{}", crate::closed_form_report::format_table(&t));
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `jbearing closed-form CASE`: the closed-form equilibria table.
+fn closed_form_command(case: &Path) -> ExitCode {
+    match Case::from_file(case) {
+        Ok(c) => {
+            let models = if c.closed_form_models.is_empty() {
+                jbearing_solvers::closed_form::ClosedFormModel::ALL.to_vec()
+            } else {
+                c.closed_form_models.clone()
+            };
+            let t = crate::closed_form_report::table(&c, &models);
+            print!("{}", crate::closed_form_report::format_table(&t));
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `jbearing synth-loads MACHINE`: the load tables of a compressor description.
+fn synth_loads_command(machine: &Path) -> ExitCode {
+    match Compressor::from_file(machine) {
+        Ok(c) => match c.write_tables() {
+            Ok(paths) => {
+                for p in paths {
+                    println!("wrote {}", p.display());
+                }
                 ExitCode::SUCCESS
             }
             Err(e) => {
-                eprintln!("error: {e}");
+                eprintln!("error: writing the tables: {e}");
                 ExitCode::FAILURE
             }
         },
-        Command::Validate { cases_dir, out } => crate::validate::run(&cases_dir, &out),
-        Command::SynthLoads { machine } => match Compressor::from_file(&machine) {
-            Ok(c) => match c.write_tables() {
-                Ok(paths) => {
-                    for p in paths {
-                        println!("wrote {}", p.display());
-                    }
-                    ExitCode::SUCCESS
-                }
-                Err(e) => {
-                    eprintln!("error: writing the tables: {e}");
-                    ExitCode::FAILURE
-                }
-            },
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::FAILURE
-            }
-        },
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
     }
 }
 
