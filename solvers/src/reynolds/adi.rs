@@ -394,42 +394,8 @@ pub(crate) fn solve_krylov(
             let mut w = std::mem::take(&mut ws.v[jj + 1]);
             st.apply(grid, &zj, &mut w);
             ws.z[jj] = zj;
-            // Modified Gram–Schmidt, one pass over w per basis vector: the update by v_ii and
-            // the dot product with the next vector (or w · w after the last) share the pass.
-            let mut hij = dot(&w, &ws.v[0]);
-            for ii in 0..=jj {
-                ws.hess[ii * RESTART + jj] = hij;
-                let next = if ii < jj {
-                    Some(ws.v[ii + 1].as_slice())
-                } else {
-                    None
-                };
-                hij = subtract_and_dot(&mut w, hij, &ws.v[ii], next);
-            }
-            let hnorm = hij.sqrt();
-            ws.hess[(jj + 1) * RESTART + jj] = hnorm;
-            if hnorm > 0.0 {
-                let inv = 1.0 / hnorm;
-                for wk in w.iter_mut() {
-                    *wk *= inv;
-                }
-            }
-            ws.v[jj + 1] = w;
-            // Givens rotations.
-            for ii in 0..jj {
-                let (a, b) = (ws.hess[ii * RESTART + jj], ws.hess[(ii + 1) * RESTART + jj]);
-                ws.hess[ii * RESTART + jj] = ws.cs[ii] * a + ws.sn[ii] * b;
-                ws.hess[(ii + 1) * RESTART + jj] = -ws.sn[ii] * a + ws.cs[ii] * b;
-            }
-            let (a, b) = (ws.hess[jj * RESTART + jj], ws.hess[(jj + 1) * RESTART + jj]);
-            let d = a.hypot(b);
-            let (c, s) = if d == 0.0 { (1.0, 0.0) } else { (a / d, b / d) };
-            ws.cs[jj] = c;
-            ws.sn[jj] = s;
-            ws.hess[jj * RESTART + jj] = d;
-            ws.hess[(jj + 1) * RESTART + jj] = 0.0;
-            ws.gvec[jj + 1] = -s * ws.gvec[jj];
-            ws.gvec[jj] *= c;
+            let hnorm = arnoldi_column(ws, jj, w);
+            rotate_column(ws, jj);
             used = jj + 1;
             iterations += 1;
             if !ws.gvec[jj + 1].is_finite() {
@@ -446,19 +412,71 @@ pub(crate) fn solve_krylov(
                 break;
             }
         }
-        // Back substitution for y, then x += Z y.
-        let mut yv = [0.0; RESTART];
-        for ii in (0..used).rev() {
-            let mut s = ws.gvec[ii];
-            for kk in ii + 1..used {
-                s -= ws.hess[ii * RESTART + kk] * yv[kk];
-            }
-            yv[ii] = s / ws.hess[ii * RESTART + ii];
+        add_correction(ws, used, x);
+    }
+}
+
+/// Column j of the Arnoldi process: w = A z_j orthogonalised against v_0 … v_j by modified
+/// Gram–Schmidt (one pass over w per basis vector: the update by v_i and the dot product with
+/// the next vector, or w · w after the last, share the pass), H_{i,j} and H_{j+1,j} = ‖w‖
+/// stored, w / ‖w‖ kept as v_{j+1}. Returns ‖w‖ (0: the Krylov space is exhausted).
+fn arnoldi_column(ws: &mut AdiWorkspace, jj: usize, mut w: Vec<f64>) -> f64 {
+    let mut hij = dot(&w, &ws.v[0]);
+    for ii in 0..=jj {
+        ws.hess[ii * RESTART + jj] = hij;
+        let next = if ii < jj {
+            Some(ws.v[ii + 1].as_slice())
+        } else {
+            None
+        };
+        hij = subtract_and_dot(&mut w, hij, &ws.v[ii], next);
+    }
+    let hnorm = hij.sqrt();
+    ws.hess[(jj + 1) * RESTART + jj] = hnorm;
+    if hnorm > 0.0 {
+        let inv = 1.0 / hnorm;
+        for wk in w.iter_mut() {
+            *wk *= inv;
         }
-        for (ii, &yi) in yv.iter().enumerate().take(used) {
-            for (xk, zk) in x.iter_mut().zip(&ws.z[ii]) {
-                *xk += yi * zk;
-            }
+    }
+    ws.v[jj + 1] = w;
+    hnorm
+}
+
+/// Column j of H brought to upper-triangular form: the earlier Givens rotations applied, a new
+/// one zeroing H_{j+1,j}, and the same rotation applied to the residual vector g (whose
+/// |g_{j+1}| is the new residual 2-norm).
+fn rotate_column(ws: &mut AdiWorkspace, jj: usize) {
+    for ii in 0..jj {
+        let (a, b) = (ws.hess[ii * RESTART + jj], ws.hess[(ii + 1) * RESTART + jj]);
+        ws.hess[ii * RESTART + jj] = ws.cs[ii] * a + ws.sn[ii] * b;
+        ws.hess[(ii + 1) * RESTART + jj] = -ws.sn[ii] * a + ws.cs[ii] * b;
+    }
+    let (a, b) = (ws.hess[jj * RESTART + jj], ws.hess[(jj + 1) * RESTART + jj]);
+    let d = a.hypot(b);
+    let (c, s) = if d == 0.0 { (1.0, 0.0) } else { (a / d, b / d) };
+    ws.cs[jj] = c;
+    ws.sn[jj] = s;
+    ws.hess[jj * RESTART + jj] = d;
+    ws.hess[(jj + 1) * RESTART + jj] = 0.0;
+    ws.gvec[jj + 1] = -s * ws.gvec[jj];
+    ws.gvec[jj] *= c;
+}
+
+/// The end of a GMRES cycle of `used` columns: back substitution R y = g, then x += Z y
+/// (right preconditioning: the preconditioned directions z_i).
+fn add_correction(ws: &AdiWorkspace, used: usize, x: &mut [f64]) {
+    let mut yv = [0.0; RESTART];
+    for ii in (0..used).rev() {
+        let mut s = ws.gvec[ii];
+        for kk in ii + 1..used {
+            s -= ws.hess[ii * RESTART + kk] * yv[kk];
+        }
+        yv[ii] = s / ws.hess[ii * RESTART + ii];
+    }
+    for (ii, &yi) in yv.iter().enumerate().take(used) {
+        for (xk, zk) in x.iter_mut().zip(&ws.z[ii]) {
+            *xk += yi * zk;
         }
     }
 }
