@@ -326,7 +326,7 @@ fn write_merged(
             source,
         })?;
         let mut w = FileWriter::new(out);
-        w.str_attr(&file, "Conventions", "CF-1.10")?;
+        w.str_attr(&file, "Conventions", crate::output::layout::CONVENTIONS)?;
         w.str_attr(
             &file,
             "title",
@@ -369,7 +369,8 @@ fn write_merged(
             w.str_attr(&ds, "units", "as in the case file (the key's suffix)")?;
         }
         let labels: Vec<String> = Method::ALL.iter().map(|m| m.as_str().to_owned()).collect();
-        let method = w.string_coordinate(&root, "solution_method", &labels, "solution method")?;
+        let sm = crate::output::layout::SOLUTION_METHOD;
+        let method = w.string_coordinate(&root, sm.name, &labels, sm.long_name)?;
         for (name, (units, long)) in &rows {
             let mut a = Array2::from_elem((n, 2), f64::NAN);
             for (i, c) in numbers.iter().enumerate() {
@@ -384,7 +385,8 @@ fn write_merged(
             }
         }
         if !crank.is_empty() {
-            let angle = w.coordinate(&root, "crank_angle", &crank, "degree", "crank angle")?;
+            let ca = crate::output::layout::CRANK_ANGLE;
+            let angle = w.coordinate(&root, ca.name, &crank, ca.units, ca.long_name)?;
             for ((m, s), (units, long)) in &series {
                 let mut a = Array2::from_elem((n, crank.len()), f64::NAN);
                 for (i, c) in numbers.iter().enumerate() {

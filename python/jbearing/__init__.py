@@ -264,15 +264,23 @@ def _f8(buf: bytes) -> np.ndarray:
     return np.frombuffer(buf, dtype="<f8").copy()
 
 
+# The names, units, long names and descriptions the HDF5 writer uses (jbearing::output::layout).
+_LAYOUT = _jbearing.layout()
+_TEXT = _LAYOUT["texts"]
+
+
+def _var(name: str, dim: str | tuple | None, values: Any, **extra: Any) -> tuple:
+    """(dims, values, attrs) of the layout table's variable ``name`` for an xarray Dataset."""
+    units, long = _LAYOUT["variables"][name]
+    attrs = {"units": units, "long_name": long} if units else {"long_name": long}
+    return (() if dim is None else dim, values, {**attrs, **extra})
+
+
 def _method_dataset(m: dict) -> tuple[xr.Dataset, xr.Dataset | None]:
     crank = _f8(m["crank_angle"])
     coords = {
-        "crank_angle": ("crank_angle", crank, {"units": "degree", "long_name": "crank angle"}),
-        "time": (
-            "crank_angle",
-            _f8(m["time"]),
-            {"units": "s", "long_name": "time within the cycle"},
-        ),
+        "crank_angle": _var("crank_angle", "crank_angle", crank),
+        "time": _var("time", "crank_angle", _f8(m["time"])),
     }
     data = {
         name: ("crank_angle", _f8(v), {"units": units, "long_name": long})
@@ -286,30 +294,10 @@ def _method_dataset(m: dict) -> tuple[xr.Dataset, xr.Dataset | None]:
     if f is None:
         return ds, None
     fc = {
-        "field_crank_angle": (
-            "field_crank_angle",
-            _f8(f["crank_angle"]),
-            {"units": "degree", "long_name": "crank angle of the stored instant"},
-        ),
-        "field_time": (
-            "field_crank_angle",
-            _f8(f["time"]),
-            {"units": "s", "long_name": "time within the cycle of the stored instant"},
-        ),
-        "theta": (
-            "theta",
-            _f8(f["theta"]),
-            {
-                "units": "rad",
-                "long_name": "circumferential angle from +x towards +y (bearing frame)",
-                "axis": "X",
-            },
-        ),
-        "z": (
-            "z",
-            _f8(f["z"]),
-            {"units": "m", "long_name": "axial position from the bearing mid-plane", "axis": "Y"},
-        ),
+        "field_crank_angle": _var("field_crank_angle", "field_crank_angle", _f8(f["crank_angle"])),
+        "field_time": _var("field_time", "field_crank_angle", _f8(f["time"])),
+        "theta": _var("theta", "theta", _f8(f["theta"]), axis="X"),
+        "z": _var("z", "z", _f8(f["z"]), axis="Y"),
     }
     fd = {
         name: (
@@ -319,32 +307,15 @@ def _method_dataset(m: dict) -> tuple[xr.Dataset, xr.Dataset | None]:
         )
         for name, long, units, buf, shape in f["fields"]
     }
-    fields = xr.Dataset(
-        fd,
-        coords=fc,
-        attrs={
-            "description": "film fields on the (theta, z) grid at the stored instants of the "
-            "final cycle; theta is periodic (theta = 2 pi is theta = 0, not repeated)"
-        },
-    )
+    fields = xr.Dataset(fd, coords=fc, attrs={"description": _TEXT["fields_description"]})
     return ds, fields
-
-
-_CLOSED_FORM_DESCRIPTION = (
-    "static equilibrium of the closed-form film models (jbearing_solvers::closed_form) under a "
-    "constant load; fd_reynolds: the finite-difference Reynolds (rigorous) answer of a steady case"
-)
 
 
 def _closed_form_dataset(t: dict) -> xr.Dataset:
     rows = t["rows"]
     models = np.array([r[0] for r in rows], dtype=object)
     data: dict[str, Any] = {
-        "status": (
-            "model",
-            np.array([r[1] for r in rows], dtype=object),
-            {"long_name": "ok, or why the model has no equilibrium"},
-        )
+        "status": _var("status", "model", np.array([r[1] for r in rows], dtype=object))
     }
     if rows:
         for k, (name, _, units, long) in enumerate(rows[0][2]):
@@ -355,9 +326,9 @@ def _closed_form_dataset(t: dict) -> xr.Dataset:
             )
     return xr.Dataset(
         data,
-        coords={"model": ("model", models, {"long_name": "film model"})},
+        coords={"model": _var("model", "model", models)},
         attrs={
-            "description": _CLOSED_FORM_DESCRIPTION,
+            "description": _TEXT["closed_form_description"],
             "load_basis": t["load_basis"],
             "load_x": t["load"][0],
             "load_y": t["load"][1],
@@ -371,7 +342,7 @@ def _report_tree(r: dict) -> xr.DataTree:
     radius, length, clearance = r["geometry"]
     attrs: dict[str, Any] = {
         "title": f"jbearing results for case '{r['case_name']}'",
-        "Conventions": "CF-1.10",
+        "Conventions": _TEXT["conventions"],
         "source": f"jbearing {run['jbearing_version']} (commit {run['git_commit']})",
         "history": f"{run['started_utc']} jbearing run of case '{r['case_name']}'",
         "case_name": r["case_name"],
@@ -389,9 +360,9 @@ def _report_tree(r: dict) -> xr.DataTree:
         attrs["warning_kinds"] = [w[0] for w in r["warnings"]]
     root = xr.Dataset(
         {
-            "radius": ((), radius, {"units": "m", "long_name": "bearing radius"}),
-            "length": ((), length, {"units": "m", "long_name": "bearing length"}),
-            "radial_clearance": ((), clearance, {"units": "m", "long_name": "radial clearance"}),
+            "radius": _var("radius", None, radius),
+            "length": _var("length", None, length),
+            "radial_clearance": _var("radial_clearance", None, clearance),
         },
         attrs=attrs,
     )
@@ -411,9 +382,7 @@ def _report_tree(r: dict) -> xr.DataTree:
         params[key] = ((), value, a)
     tree: dict[str, xr.Dataset] = {
         "/": root,
-        "parameters": xr.Dataset(
-            params, attrs={"description": "resolved case parameters (defaults filled in)"}
-        ),
+        "parameters": xr.Dataset(params, attrs={"description": _TEXT["parameters_description"]}),
     }
     for m in r["methods"]:
         ds, fields = _method_dataset(m)
@@ -426,36 +395,21 @@ def _report_tree(r: dict) -> xr.DataTree:
             for name, long, units, values in r["summary"]
         },
         coords={
-            "solution_method": (
-                "solution_method",
-                np.array(r["method_names"], dtype=object),
-                {"long_name": "solution method"},
+            "solution_method": _var(
+                "solution_method", "solution_method", np.array(r["method_names"], dtype=object)
             )
         },
-        attrs={
-            "description": "cycle figures per method; mobility deviation = (mobility - rigorous)"
-            " / |rigorous|"
-        },
+        attrs={"description": _TEXT["summary_description"]},
     )
     if r["closed_form"] is not None:
         tree["closed_form"] = _closed_form_dataset(r["closed_form"])
     if r["input_files"]:
         tree["input_files"] = xr.Dataset(
-            {
-                "text": (
-                    "file",
-                    np.array([f[1] for f in r["input_files"]], dtype=object),
-                    {"long_name": "file contents"},
-                )
-            },
+            {"text": _var("text", "file", np.array([f[1] for f in r["input_files"]], dtype=object))},
             coords={
-                "file": (
-                    "file",
-                    np.array([f[0] for f in r["input_files"]], dtype=object),
-                    {"long_name": "path as referenced by the case file"},
-                )
+                "file": _var("file", "file", np.array([f[0] for f in r["input_files"]], dtype=object))
             },
-            attrs={"description": "input files the case refers to, verbatim"},
+            attrs={"description": _TEXT["input_files_description"]},
         )
     return xr.DataTree.from_dict(tree)
 
@@ -886,16 +840,8 @@ def steady(
         ),
     }
     coords = {
-        "theta": (
-            "theta",
-            _f8(r["theta"]),
-            {"units": "rad", "long_name": "circumferential angle from +x towards +y (bearing frame)", "axis": "X"},
-        ),
-        "z": (
-            "z",
-            _f8(r["z"]),
-            {"units": "m", "long_name": "axial position from the bearing mid-plane", "axis": "Y"},
-        ),
+        "theta": _var("theta", "theta", _f8(r["theta"]), axis="X"),
+        "z": _var("z", "z", _f8(r["z"]), axis="Y"),
     }
     return xr.Dataset(
         data,

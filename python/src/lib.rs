@@ -608,6 +608,26 @@ fn steady<'py>(
     Ok(d)
 }
 
+/// The CASE.h5 layout table the HDF5 writer uses (`jbearing::output::layout`): `{"variables":
+/// {name: (units, long_name)}, "texts": {key: text}}`, so the Python tree spells the coordinates,
+/// geometry scalars and group descriptions as the file does.
+#[pyfunction]
+fn layout(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    use jbearing::output::layout::{TEXTS, VARIABLES};
+    let variables = PyDict::new(py);
+    for v in VARIABLES {
+        variables.set_item(v.name, (v.units, v.long_name))?;
+    }
+    let texts = PyDict::new(py);
+    for (key, text) in TEXTS {
+        texts.set_item(key, text)?;
+    }
+    let d = PyDict::new(py);
+    d.set_item("variables", variables)?;
+    d.set_item("texts", texts)?;
+    Ok(d)
+}
+
 #[pymodule]
 fn _jbearing(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -621,5 +641,6 @@ fn _jbearing(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solve_case_text, m)?)?;
     m.add_function(wrap_pyfunction!(closed_form_text, m)?)?;
     m.add_function(wrap_pyfunction!(steady, m)?)?;
+    m.add_function(wrap_pyfunction!(layout, m)?)?;
     Ok(())
 }

@@ -83,7 +83,7 @@ fn write_root(w: &mut FileWriter, file: &h5::File, r: &MechanismResults) -> Res<
         "title",
         &format!("jbearing mechanism results for case '{}'", c.name),
     )?;
-    w.str_attr(file, "Conventions", "CF-1.10")?;
+    w.str_attr(file, "Conventions", crate::output::layout::CONVENTIONS)?;
     w.str_attr(
         file,
         "source",

@@ -59,6 +59,7 @@ use hdf5_metno::types::VarLenUnicode;
 use hdf5_metno_sys::h5::herr_t;
 use hdf5_metno_sys::h5i::hid_t;
 
+use super::layout;
 use super::{
     CaseReport, ClosedFormTable, ElasticReport, FieldSnapshots, Method, MethodResult, OutputError,
     OutputWriter, ParameterValue, vtkhdf, write_atomically,
@@ -236,7 +237,7 @@ impl FileWriter {
         // and long_name. No standard_name: the CF table has none for bearing quantities, and
         // the time coordinates are times within a periodic cycle without a reference date
         // (a CF time coordinate needs "s since <date>", which xarray would decode to dates).
-        self.str_attr(file, "Conventions", "CF-1.10")?;
+        self.str_attr(file, "Conventions", layout::CONVENTIONS)?;
         self.str_attr(
             file,
             "source",
@@ -291,24 +292,18 @@ impl FileWriter {
         }
 
         let g = r.geometry;
-        self.scalar(file, "radius", g.radius, "m", "bearing radius")?;
-        self.scalar(file, "length", g.length, "m", "bearing length")?;
-        self.scalar(
-            file,
-            "radial_clearance",
-            g.radial_clearance,
-            "m",
-            "radial clearance",
-        )?;
+        for (v, value) in [
+            (layout::RADIUS, g.radius),
+            (layout::LENGTH, g.length),
+            (layout::RADIAL_CLEARANCE, g.radial_clearance),
+        ] {
+            self.scalar(file, v.name, value, v.units, v.long_name)?;
+        }
 
         let params = file
             .create_group("parameters")
             .map_err(self.err("group parameters"))?;
-        self.str_attr(
-            &params,
-            "description",
-            "resolved case parameters (defaults filled in)",
-        )?;
+        self.str_attr(&params, "description", layout::PARAMETERS_DESCRIPTION)?;
         for p in &r.parameters {
             let ctx = format!("parameter {}", p.key);
             let ds = match &p.value {
@@ -410,15 +405,13 @@ impl FileWriter {
         }
         // The dimension is the crank angle (exact grid values shared by both methods, so that
         // `.sel(crank_angle=90)` and `rigorous - mobility` work); time is an auxiliary coordinate.
-        let crank = self.coordinate(&g, "crank_angle", &m.crank_angle, "degree", "crank angle")?;
-        let time = self.variable(&g, "time", &m.time, &[&crank])?;
-        self.str_attr(&time, "units", "s")?;
-        self.str_attr(&time, "long_name", "time within the cycle")?;
+        let crank = self.coordinate_of(&g, layout::CRANK_ANGLE, &m.crank_angle)?;
+        self.auxiliary(&g, layout::TIME, &m.time, &crank)?;
         for s in &m.series {
             let ds = self.variable(&g, &s.name, &s.values, &[&crank])?;
             self.str_attr(&ds, "units", &s.units)?;
             self.str_attr(&ds, "long_name", &s.long_name)?;
-            self.str_attr(&ds, "coordinates", "time")?;
+            self.str_attr(&ds, "coordinates", layout::TIME.name)?;
         }
         if let Some(f) = &m.fields {
             self.write_fields(&g, name, f)?;
@@ -437,42 +430,13 @@ impl FileWriter {
         let g = parent
             .create_group("fields")
             .map_err(self.err(format!("group {method}/fields")))?;
-        self.str_attr(
-            &g,
-            "description",
-            "film fields on the (theta, z) grid at the stored instants of the final cycle; theta \
-             is periodic (theta = 2 pi is theta = 0, not repeated)",
-        )?;
+        self.str_attr(&g, "description", layout::FIELDS_DESCRIPTION)?;
         // Its own dimension name: a child group may not reuse its parent's `time` with another
         // length (xarray's DataTree requires every group aligned with its parents).
-        let crank = self.coordinate(
-            &g,
-            "field_crank_angle",
-            &f.crank_angle,
-            "degree",
-            "crank angle of the stored instant",
-        )?;
-        let time = self.variable(&g, "field_time", &f.time, &[&crank])?;
-        self.str_attr(&time, "units", "s")?;
-        self.str_attr(
-            &time,
-            "long_name",
-            "time within the cycle of the stored instant",
-        )?;
-        let theta = self.coordinate(
-            &g,
-            "theta",
-            &f.theta,
-            "rad",
-            "circumferential angle from +x towards +y (bearing frame)",
-        )?;
-        let z = self.coordinate(
-            &g,
-            "z",
-            &f.z,
-            "m",
-            "axial position from the bearing mid-plane",
-        )?;
+        let crank = self.coordinate_of(&g, layout::FIELD_CRANK_ANGLE, &f.crank_angle)?;
+        self.auxiliary(&g, layout::FIELD_TIME, &f.time, &crank)?;
+        let theta = self.coordinate_of(&g, layout::THETA, &f.theta)?;
+        let z = self.coordinate_of(&g, layout::Z, &f.z)?;
         let (nt, nth, nz) = (f.time.len(), f.theta.len(), f.z.len());
         for fld in &f.fields {
             let ctx = format!("{method}/fields/{}", fld.name);
@@ -489,7 +453,7 @@ impl FileWriter {
             self.attach(&ds, &[&crank, &theta, &z], &fld.name)?;
             self.str_attr(&ds, "units", &fld.units)?;
             self.str_attr(&ds, "long_name", &fld.long_name)?;
-            self.str_attr(&ds, "coordinates", "field_time")?;
+            self.str_attr(&ds, "coordinates", layout::FIELD_TIME.name)?;
         }
         self.str_attr(&theta, "axis", "X")?;
         self.str_attr(&z, "axis", "Y")?;
@@ -500,51 +464,38 @@ impl FileWriter {
         let g = file
             .create_group("input_files")
             .map_err(self.err("group input_files"))?;
-        self.str_attr(
-            &g,
-            "description",
-            "input files the case refers to, verbatim",
-        )?;
+        self.str_attr(&g, "description", layout::INPUT_FILES_DESCRIPTION)?;
         let paths: Vec<VarLenUnicode> = r.input_files.iter().map(|f| vlen(&f.path)).collect();
         let texts: Vec<VarLenUnicode> = r.input_files.iter().map(|f| vlen(&f.text)).collect();
         let file_dim = g
             .new_dataset_builder()
             .with_data(&paths[..])
-            .create("file")
+            .create(layout::INPUT_FILE.name)
             .map_err(self.err("input_files/file"))?;
-        self.make_scale(&file_dim, "file")?;
-        self.str_attr(
-            &file_dim,
-            "long_name",
-            "path as referenced by the case file",
-        )?;
+        self.make_scale(&file_dim, layout::INPUT_FILE.name)?;
+        self.str_attr(&file_dim, "long_name", layout::INPUT_FILE.long_name)?;
         let text = g
             .new_dataset_builder()
             .with_data(&texts[..])
-            .create("text")
+            .create(layout::INPUT_TEXT.name)
             .map_err(self.err("input_files/text"))?;
-        self.attach(&text, &[&file_dim], "text")?;
-        self.str_attr(&text, "long_name", "file contents")
+        self.attach(&text, &[&file_dim], layout::INPUT_TEXT.name)?;
+        self.str_attr(&text, "long_name", layout::INPUT_TEXT.long_name)
     }
 
     fn write_summary(&mut self, file: &h5::File, r: &CaseReport) -> Res<()> {
         let g = file
             .create_group("summary")
             .map_err(self.err("group summary"))?;
-        self.str_attr(
-            &g,
-            "description",
-            "cycle figures per method; mobility deviation = (mobility - rigorous) / |rigorous|",
-        )?;
-        // Not `method`: xarray's `.sel(method=…)` would take it for its own keyword.
+        self.str_attr(&g, "description", layout::SUMMARY_DESCRIPTION)?;
         let labels: Vec<VarLenUnicode> = Method::ALL.iter().map(|m| vlen(m.as_str())).collect();
         let method = g
             .new_dataset_builder()
             .with_data(&labels[..])
-            .create("solution_method")
+            .create(layout::SOLUTION_METHOD.name)
             .map_err(self.err("summary/solution_method"))?;
-        self.make_scale(&method, "solution_method")?;
-        self.str_attr(&method, "long_name", "solution method")?;
+        self.make_scale(&method, layout::SOLUTION_METHOD.name)?;
+        self.str_attr(&method, "long_name", layout::SOLUTION_METHOD.long_name)?;
         for row in &r.summary {
             let values: Vec<f64> = Method::ALL
                 .iter()
@@ -562,13 +513,7 @@ impl FileWriter {
         let g = file
             .create_group("closed_form")
             .map_err(self.err("group closed_form"))?;
-        self.str_attr(
-            &g,
-            "description",
-            "static equilibrium of the closed-form film models (jbearing_solvers::closed_form) \
-             under a constant load; fd_reynolds: the finite-difference Reynolds (rigorous) \
-             answer of a steady case",
-        )?;
+        self.str_attr(&g, "description", layout::CLOSED_FORM_DESCRIPTION)?;
         self.str_attr(&g, "load_basis", &t.load_basis)?;
         self.f64_attr(&g, "load_x", t.load[0])?;
         self.f64_attr(&g, "load_y", t.load[1])?;
@@ -577,18 +522,18 @@ impl FileWriter {
         let model = g
             .new_dataset_builder()
             .with_data(&labels[..])
-            .create("model")
+            .create(layout::MODEL.name)
             .map_err(self.err("closed_form/model"))?;
-        self.make_scale(&model, "model")?;
-        self.str_attr(&model, "long_name", "film model")?;
+        self.make_scale(&model, layout::MODEL.name)?;
+        self.str_attr(&model, "long_name", layout::MODEL.long_name)?;
         let status: Vec<VarLenUnicode> = t.rows.iter().map(|r| vlen(&r.status)).collect();
         let st = g
             .new_dataset_builder()
             .with_data(&status[..])
-            .create("status")
+            .create(layout::STATUS.name)
             .map_err(self.err("closed_form/status"))?;
-        self.attach(&st, &[&model], "status")?;
-        self.str_attr(&st, "long_name", "ok, or why the model has no equilibrium")?;
+        self.attach(&st, &[&model], layout::STATUS.name)?;
+        self.str_attr(&st, "long_name", layout::STATUS.long_name)?;
         let Some(first) = t.rows.first() else {
             return Ok(());
         };
@@ -628,6 +573,29 @@ impl FileWriter {
             self.str_attr(&ds, "long_name", &s.long_name)?;
         }
         Ok(())
+    }
+
+    /// The coordinate variable `v` of the layout table ([`layout`]).
+    fn coordinate_of(
+        &mut self,
+        g: &h5::Group,
+        v: layout::Variable,
+        values: &[f64],
+    ) -> Res<h5::Dataset> {
+        self.coordinate(g, v.name, values, v.units, v.long_name)
+    }
+
+    /// The auxiliary coordinate `v` of the layout table on the dimension `dim`.
+    fn auxiliary(
+        &mut self,
+        g: &h5::Group,
+        v: layout::Variable,
+        values: &[f64],
+        dim: &h5::Dataset,
+    ) -> Res<()> {
+        let ds = self.variable(g, v.name, values, &[dim])?;
+        self.str_attr(&ds, "units", v.units)?;
+        self.str_attr(&ds, "long_name", v.long_name)
     }
 
     /// A 1-D coordinate variable that is also its own dimension (netCDF "coordinate variable").

@@ -42,6 +42,7 @@ pub mod closed_form;
 pub mod csv_summary;
 pub mod elastic;
 pub mod hdf5;
+pub mod layout;
 pub mod plots;
 pub mod vtkhdf;
 
