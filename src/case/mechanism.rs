@@ -128,6 +128,9 @@ pub struct JointSection {
     /// Reynolds grid.
     pub n_theta: Option<usize>,
     pub n_z: Option<usize>,
+    /// The film's friction torque on the journal in the rod's moment equation (default false,
+    /// as \[Flores2009\]).
+    pub film_torque: Option<bool>,
 }
 
 /// `[mechanism.contact]`.
@@ -142,6 +145,10 @@ pub struct ContactSection {
     pub boundary_layer_m: Option<f64>,
     pub blend_width_m: Option<f64>,
     pub min_impact_speed_m_s: Option<f64>,
+    /// Coulomb friction coefficient of the dry contact (default 0).
+    pub friction_coefficient: Option<f64>,
+    /// Regularisation speed of the friction law (m/s).
+    pub friction_speed_m_s: Option<f64>,
 }
 
 /// `[mechanism.integrator]`.
@@ -342,6 +349,7 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
                 ("film", j.film.is_some()),
                 ("n_theta", j.n_theta.is_some()),
                 ("n_z", j.n_z.is_some()),
+                ("film_torque", j.film_torque.is_some()),
             ] {
                 if given {
                     return Err(ctx.err(
@@ -409,6 +417,7 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
                 viscosity,
                 film: JointFilm::ClosedForm(ClosedFormModel::PinkusSternlicht),
                 contact: ContactParams::default(),
+                film_torque: j.film_torque.unwrap_or(false),
             };
             joint.film = if film_name == "reynolds" {
                 let mut p = joint.reynolds_params();
@@ -499,6 +508,21 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
                         "min_impact_speed_m_s",
                         s.min_impact_speed_m_s,
                         d.min_impact_speed,
+                    )?,
+                    friction_coefficient: match s.friction_coefficient {
+                        Some(v) if !(v.is_finite() && v >= 0.0) => {
+                            return Err(ctx.err(
+                                &ck("friction_coefficient"),
+                                format!("a friction coefficient must be ≥ 0, got {v}"),
+                            ));
+                        }
+                        Some(v) => v,
+                        None => d.friction_coefficient,
+                    },
+                    friction_speed: pos(
+                        "friction_speed_m_s",
+                        s.friction_speed_m_s,
+                        d.friction_speed,
                     )?,
                 };
                 let cc = joint.contact;
@@ -796,6 +820,35 @@ mod tests {
             .to_string();
         assert!(
             err.contains("mechanism.integrator.error_tolerance"),
+            "{err}"
+        );
+    }
+
+    /// The friction switches: off by default (as \[Flores2009\]), read when given, a negative
+    /// coefficient refused naming its key.
+    #[test]
+    fn friction_switches_are_read_and_checked() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/flores2009_slider_crank.toml");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let joint = |case: &MechanismCase| case.lubricated_joint().unwrap().clone();
+        let default = MechanismCase::from_text(&text, &path).unwrap();
+        assert!(!joint(&default).film_torque);
+        assert_eq!(joint(&default).contact.friction_coefficient, 0.0);
+        let on = text.replace(
+            "film = \"pinkus_sternlicht\"",
+            "film = \"pinkus_sternlicht\"\nfilm_torque = true\n\n[mechanism.contact]\nfriction_coefficient = 0.1\nfriction_speed_m_s = 0.01",
+        );
+        let case = MechanismCase::from_text(&on, &path).unwrap();
+        let j = joint(&case);
+        assert!(j.film_torque);
+        assert_eq!(j.contact.friction_coefficient, 0.1);
+        assert_eq!(j.contact.friction_speed, 0.01);
+        let bad = on.replace("friction_coefficient = 0.1", "friction_coefficient = -0.1");
+        let err = MechanismCase::from_text(&bad, &path)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("mechanism.contact.friction_coefficient"),
             "{err}"
         );
     }

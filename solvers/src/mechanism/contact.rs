@@ -14,8 +14,21 @@
 //! c_e is the coefficient of restitution; the hysteresis term dissipates the energy lost in an
 //! impact with that c_e. K is the stiffness Flores & Ambrósio use for a revolute clearance joint
 //! (the sphere-in-sphere Hertz constant with the two radii of the joint); n = 3/2 likewise.
-//! F_N acts on the journal towards the bearing centre (−ê); friction at the contact is not
-//! modelled (the example of \[Flores2009\] is lubricated; a Coulomb law is a later extension).
+//! F_N acts on the journal towards the bearing centre (−ê).
+//!
+//! # Friction (not in \[Flores2009\]: off by default)
+//!
+//! Coulomb friction with a regularised sliding velocity (Flores & Ambrósio's joints use the same
+//! kind of law; \[Flores2009\]'s example is lubricated and has none): with the tangent
+//! t̂ = (−ê_y, ê_x) and the sliding velocity of the journal's contact point on the bearing
+//! v_t = ė·t̂ + φ̇₃ R_j (the bearing, in the slider, does not rotate),
+//!
+//! ```text
+//!   F_T = −μ_f F_N v_t / √(v_t² + v₀²)   along t̂,   moment on the journal about its centre R_j F_T
+//! ```
+//!
+//! μ_f = `friction_coefficient` (default 0), v₀ = `friction_speed` (default 1 mm/s, against
+//! sliding speeds φ̇₃ R_j of ~1 m/s here). Its power −F_T v_t ≥ 0 is dissipated.
 //!
 //! # Transition (\[Flores2009\] eq. 20, in film-thickness terms)
 //!
@@ -57,6 +70,10 @@ pub struct ContactParams {
     /// Floor on the impact velocity δ̇⁻ (m/s): a contact entered with a smaller (or no) rate
     /// uses this one, so the hysteresis damping stays finite.
     pub min_impact_speed: f64,
+    /// Coulomb friction coefficient μ_f of the dry contact (0: none, as \[Flores2009\]).
+    pub friction_coefficient: f64,
+    /// Regularisation speed v₀ of the friction law (m/s).
+    pub friction_speed: f64,
 }
 
 impl Default for ContactParams {
@@ -74,6 +91,8 @@ impl Default for ContactParams {
             boundary_layer: 1e-6,
             blend_width: 0.5e-6,
             min_impact_speed: 1e-3,
+            friction_coefficient: 0.0,
+            friction_speed: 1e-3,
         }
     }
 }
@@ -92,6 +111,7 @@ impl ContactParams {
                 self.bearing_youngs_modulus,
             ),
             ("contact.min_impact_speed", self.min_impact_speed),
+            ("contact.friction_speed", self.friction_speed),
             ("contact.boundary_layer", self.boundary_layer),
             ("contact.blend_width", self.blend_width),
         ] {
@@ -106,6 +126,12 @@ impl ContactParams {
             if !(v.is_finite() && (0.0..0.5).contains(&v)) {
                 return Err(bad(name, v));
             }
+        }
+        if !(self.friction_coefficient.is_finite() && self.friction_coefficient >= 0.0) {
+            return Err(bad(
+                "contact.friction_coefficient (≥ 0)",
+                self.friction_coefficient,
+            ));
         }
         if !(self.restitution > 0.0 && self.restitution <= 1.0) {
             return Err(bad("contact.restitution (0 < c_e ≤ 1)", self.restitution));
@@ -241,6 +267,16 @@ mod tests {
         assert!(p.validate(c).is_err());
         let p = ContactParams {
             restitution: 0.0,
+            ..Default::default()
+        };
+        assert!(p.validate(c).is_err());
+        let p = ContactParams {
+            friction_coefficient: -0.1,
+            ..Default::default()
+        };
+        assert!(p.validate(c).is_err());
+        let p = ContactParams {
+            friction_speed: 0.0,
             ..Default::default()
         };
         assert!(p.validate(c).is_err());

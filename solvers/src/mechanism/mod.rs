@@ -44,10 +44,12 @@
 //! # Equations of motion
 //!
 //! With F the joint force on the rod (journal) at B_j — the slider (bearing) gets −F — and the
-//! rod's centre of mass at d₃ from A (J_A = J₃ + m₃ d₃²; a × b = a_x b_y − a_y b_x):
+//! rod's centre of mass at d₃ from A (J_A = J₃ + m₃ d₃²; a × b = a_x b_y − a_y b_x), and T the
+//! joint's moment on the rod about B_j (film friction torque and contact friction, both off by
+//! default; the slider's guide takes −T):
 //!
 //! ```text
-//!   (M1)  J_A φ̈₃ = L₃ u × F + m₃ d₃ u × (g − Ä)          rod, moments about the moving pin A
+//!   (M1)  J_A φ̈₃ = L₃ u × F + T + m₃ d₃ u × (g − Ä)      rod, moments about the moving pin A
 //!   (M2)  m₄ ẍ₄  = −F_x + m₄ g_x                          slider along the guide
 //!   ë_x = Ä_x − L₃ (sin φ₃ φ̈₃ + cos φ₃ φ̇₃²) − ẍ₄,   ë_y = Ä_y + L₃ (cos φ₃ φ̈₃ − sin φ₃ φ̇₃²)
 //! ```
@@ -76,9 +78,12 @@
 //!   [`crate::reynolds`] through [`crate::inverse::ReynoldsFilm`];
 //! - dry contact and the transition: [`contact`] (Lankarani–Nikravesh, \[Flores2009\] eq. 20).
 //!
-//! Left out, as in \[Flores2009\] (eqs. 33–34 transport the film force only): the film's viscous
-//! friction torque on the journal, 2πμR³Lφ̇₃/(c√(1−ε²)) ≈ 0.1 N m for Table 3 against a
-//! driving moment of 139 N m, and friction in the dry contact.
+//! Left out by default, as in \[Flores2009\] (eqs. 33–34 transport the film force only; its
+//! contact law has no friction), and available as switches: the film's friction torque on the
+//! journal ([`LubricatedJointParams::film_torque`]; closed forms: −2πμR³Lφ̇₃/(c√(1−ε²)) − ½ (e × F)
+//! of [`crate::closed_form::ClosedFormFilm`], ≈ 0.1 N m for Table 3 against a driving moment of
+//! 139 N m; the Reynolds film: its own shear torque), and Coulomb friction in the dry contact
+//! ([`ContactParams::friction_coefficient`], [`contact`]).
 //!
 //! # Integration
 //!
@@ -195,6 +200,10 @@ pub struct LubricatedJointParams {
     pub film: JointFilm,
     /// Dry contact and the transition to it.
     pub contact: ContactParams,
+    /// Put the film's friction torque on the journal ([`crate::inverse::FilmResponse::
+    /// friction_torque_journal`]: Couette and pressure-flow shear) into the rod's moment
+    /// equation. Default false, as \[Flores2009\] (its eqs. 33–34 transport the film force only).
+    pub film_torque: bool,
 }
 
 impl LubricatedJointParams {
@@ -215,6 +224,7 @@ impl LubricatedJointParams {
             viscosity,
             film: JointFilm::ClosedForm(ClosedFormModel::PinkusSternlicht),
             contact: ContactParams::default(),
+            film_torque: false,
         }
     }
 

@@ -158,6 +158,11 @@ pub struct JointLoads {
     pub guide_normal: f64,
     /// Driving moment on the crank that keeps its speed constant (N m, counter-clockwise).
     pub crank_moment: f64,
+    /// Moment of the rod–slider joint on the rod (journal) about the journal centre, N m
+    /// (counter-clockwise positive): the film's friction torque and the dry contact's friction
+    /// moment where those are switched on, else 0; the slider's guide takes the opposite
+    /// moment (the slider does not rotate).
+    pub rod_slider_torque: f64,
 }
 
 /// The mechanism's configuration at one instant, from the crank angle and the journal
@@ -208,15 +213,17 @@ impl SliderCrankParams {
         })
     }
 
-    /// Rod and slider accelerations (φ̈₃, ẍ₄) for the joint force `f` on the rod at B
-    /// (minimal-coordinate equations of motion, module docs eqs. M1–M2).
-    pub(crate) fn accelerations(&self, k: &Configuration, f: [f64; 2]) -> [f64; 2] {
+    /// Rod and slider accelerations (φ̈₃, ẍ₄) for the joint force `f` on the rod at B and the
+    /// joint's moment `torque` on the rod (minimal-coordinate equations of motion, module docs
+    /// eqs. M1–M2).
+    pub(crate) fn accelerations(&self, k: &Configuration, f: [f64; 2], torque: f64) -> [f64; 2] {
         let rod = &self.rod;
         let ja = rod.inertia + rod.mass * rod.center_of_mass * rod.center_of_mass;
         let g = self.gravity;
         let rel = [g[0] - k.pin[2][0], g[1] - k.pin[2][1]];
         let phi_dd =
-            (rod.length * cross(k.u, f) + rod.mass * rod.center_of_mass * cross(k.u, rel)) / ja;
+            (rod.length * cross(k.u, f) + torque + rod.mass * rod.center_of_mass * cross(k.u, rel))
+                / ja;
         let x_dd = (-f[0] + self.slider_mass * g[0]) / self.slider_mass;
         [phi_dd, x_dd]
     }
@@ -264,9 +271,15 @@ impl SliderCrankParams {
         ]
     }
 
-    /// Joint loads for the configuration, its accelerations and the rod–slider force `f`
-    /// (module docs eqs. R1–R4).
-    pub(crate) fn joint_loads(&self, k: &Configuration, acc: [f64; 2], f: [f64; 2]) -> JointLoads {
+    /// Joint loads for the configuration, its accelerations, the rod–slider force `f` and
+    /// moment `torque` on the rod (module docs eqs. R1–R4).
+    pub(crate) fn joint_loads(
+        &self,
+        k: &Configuration,
+        acc: [f64; 2],
+        f: [f64; 2],
+        torque: f64,
+    ) -> JointLoads {
         let (m2, m3, m4) = (self.crank.mass, self.rod.mass, self.slider_mass);
         let g = self.gravity;
         let d3 = self.rod.center_of_mass;
@@ -295,6 +308,7 @@ impl SliderCrankParams {
             ground_pivot: fo,
             guide_normal: f[1] - m4 * g[1],
             crank_moment: moment,
+            rod_slider_torque: torque,
         }
     }
 
@@ -374,7 +388,7 @@ mod tests {
         for i in 0..8 {
             let t = i as f64 * p.period() / 8.0 + 2e-5;
             let (k, acc, f) = p.ideal(t).unwrap();
-            let back = p.accelerations(&k, f);
+            let back = p.accelerations(&k, f, 0.0);
             assert!((back[0] - acc[0]).abs() < 1e-9 * acc[0].abs().max(1e3));
             assert!((back[1] - acc[1]).abs() < 1e-9 * acc[1].abs().max(1e2));
             // ë = 0: the journal stays in the bearing centre.

@@ -7,6 +7,7 @@ use super::{
     ContactEvent, ContactEventKind, Integrator, JointFilm, LubricatedJointParams, MechanismError,
     MechanismFilmFields, MechanismInfo, MechanismParams, MechanismSolution, RodSliderJoint,
 };
+use crate::closed_form::short::couette_shear_torque;
 use crate::closed_form::{ClosedFormModel, ClosedFormParams, JournalMotion, film_force};
 use crate::inverse::{FilmFields, FilmModel, OperatingConditions, ReynoldsFilm};
 use crate::reynolds::FilmState;
@@ -131,7 +132,7 @@ fn solve_ideal(params: &MechanismParams) -> Result<MechanismSolution, MechanismE
     let mut out = MechanismSolution::default();
     for t in sample_times(params) {
         let (k, acc, f) = mech.ideal(t)?;
-        out.push_sample(mech, &k, acc, f, [0.0; 2], [0.0; 2]);
+        out.push_sample(mech, &k, acc, (f, 0.0), [0.0; 2], [0.0; 2]);
     }
     out.check_finite()?;
     out.finish(None, None);
@@ -144,7 +145,7 @@ impl MechanismSolution {
         mech: &SliderCrankParams,
         k: &Configuration,
         acc: [f64; 2],
-        f: [f64; 2],
+        (f, torque): ([f64; 2], f64),
         e: [f64; 2],
         e_rate: [f64; 2],
     ) {
@@ -152,7 +153,7 @@ impl MechanismSolution {
         self.crank_angle_deg
             .push(mech.crank_angle(k.t).to_degrees());
         self.bodies.push(mech.bodies(k));
-        self.loads.push(mech.joint_loads(k, acc, f));
+        self.loads.push(mech.joint_loads(k, acc, f, torque));
         self.eccentricity.push(e);
         self.eccentricity_rate.push(e_rate);
     }
@@ -248,10 +249,16 @@ const MAX_NEWTON_STEP: f64 = 0.05;
 /// A run with more contact events than this is stopped with an error.
 const MAX_CONTACT_EVENTS: usize = 100_000;
 
-/// Force on the journal and its parts at one state.
+/// Force and moment on the journal and their parts at one state.
 #[derive(Debug, Clone, Copy)]
 struct JointForce {
     total: [f64; 2],
+    /// Moment on the journal about its centre (film torque where switched on, contact
+    /// friction), blended.
+    torque: f64,
+    /// The film's force and torque before the blend (0 where not evaluated, s = 1).
+    film: [f64; 2],
+    film_torque: f64,
     weight: f64,
 }
 
@@ -271,53 +278,84 @@ impl<'a> JointModel<'a> {
         }
     }
 
-    /// Penetration δ, blend weight s and the dry force on the journal for e, ė.
-    fn dry(&self, e: [f64; 2], e_rate: [f64; 2], impact_speed: f64) -> (f64, [f64; 2]) {
+    /// Blend weight s, the dry force on the journal and its moment about the journal centre
+    /// (Coulomb friction, [`super::contact`]) for e, ė and the journal's spin φ̇₃.
+    fn dry(
+        &self,
+        e: [f64; 2],
+        e_rate: [f64; 2],
+        rod_rate: f64,
+        impact_speed: f64,
+    ) -> (f64, [f64; 2], f64) {
         let r = e[0].hypot(e[1]);
         let delta = r - self.contact_radius;
         if delta <= 0.0 {
-            return (0.0, [0.0; 2]);
+            return (0.0, [0.0; 2], 0.0);
         }
         let n = [e[0] / r, e[1] / r];
         let rate = n[0] * e_rate[0] + n[1] * e_rate[1];
         let k = &self.joint.contact;
         let fnorm = lankarani_nikravesh(self.stiffness, k.restitution, delta, rate, impact_speed);
-        (
-            blend_weight(delta, k.blend_width),
-            [-fnorm * n[0], -fnorm * n[1]],
-        )
+        let (mut force, mut torque) = ([-fnorm * n[0], -fnorm * n[1]], 0.0);
+        if k.friction_coefficient > 0.0 {
+            let t = [-n[1], n[0]];
+            let slip = e_rate[0] * t[0] + e_rate[1] * t[1] + rod_rate * self.joint.journal_radius;
+            let ft = -k.friction_coefficient * fnorm * slip / slip.hypot(k.friction_speed);
+            force = [force[0] + ft * t[0], force[1] + ft * t[1]];
+            torque = self.joint.journal_radius * ft;
+        }
+        (blend_weight(delta, k.blend_width), force, torque)
     }
 
-    /// Blend a film force (evaluated only when s < 1) with the dry force.
+    /// Blend a film force and torque (evaluated only when s < 1; the torque counted where
+    /// [`LubricatedJointParams::film_torque`] asks for it) with the dry force and moment.
     fn blend(
         &self,
         e: [f64; 2],
         e_rate: [f64; 2],
+        rod_rate: f64,
         impact_speed: f64,
-        film: impl FnOnce() -> Result<[f64; 2], String>,
+        film: impl FnOnce() -> Result<([f64; 2], f64), String>,
     ) -> Result<JointForce, String> {
-        let (s, dry) = self.dry(e, e_rate, impact_speed);
-        let film = if s < 1.0 { film()? } else { [0.0; 2] };
+        let (s, dry, dry_torque) = self.dry(e, e_rate, rod_rate, impact_speed);
+        let (film, film_torque) = if s < 1.0 { film()? } else { ([0.0; 2], 0.0) };
+        let film_torque = if self.joint.film_torque {
+            film_torque
+        } else {
+            0.0
+        };
         Ok(JointForce {
             total: [
                 (1.0 - s) * film[0] + s * dry[0],
                 (1.0 - s) * film[1] + s * dry[1],
             ],
+            torque: (1.0 - s) * film_torque + s * dry_torque,
+            film,
+            film_torque,
             weight: s,
         })
     }
 
+    /// A closed-form film's force and its friction torque on the journal, −T_s − ½ (e × F)
+    /// (Couette and pressure-flow shear, as [`crate::closed_form::ClosedFormFilm`]).
     fn closed_film(
         &self,
         model: ClosedFormModel,
         eps: [f64; 2],
         eps_rate: [f64; 2],
         omega: f64,
-    ) -> Result<[f64; 2], String> {
+    ) -> Result<([f64; 2], f64), String> {
         let motion = JournalMotion::from_cartesian(eps, eps_rate, omega);
-        film_force(model, &self.cf, &motion)
+        let f = film_force(model, &self.cf, &motion)
             .map(|f| f.cartesian)
-            .map_err(|e| e.to_string())
+            .map_err(|e| e.to_string())?;
+        let torque = if self.joint.film_torque {
+            let shear = couette_shear_torque(&self.cf, eps[0].hypot(eps[1]), omega);
+            -shear - 0.5 * self.c * (eps[0] * f[1] - eps[1] * f[0])
+        } else {
+            0.0
+        };
+        Ok((f, torque))
     }
 
     /// ε̈ for the state (ε, ε̇) at t and the joint force law `force`, with the configuration.
@@ -338,7 +376,7 @@ impl<'a> JointModel<'a> {
             eccentricity_ratio: eps[0].hypot(eps[1]),
             reason,
         })?;
-        let acc = self.mech.accelerations(&k, f.total);
+        let acc = self.mech.accelerations(&k, f.total, f.torque);
         let ea = self.mech.eccentricity_acceleration(&k, acc);
         Ok(([ea[0] / c, ea[1] / c], k, acc, f))
     }
@@ -375,6 +413,7 @@ impl RadauOde<'_, '_> {
             m.blend(
                 [c * eps[0], c * eps[1]],
                 [c * rate[0], c * rate[1]],
+                k.rod_rate,
                 self.impact_speed,
                 || m.closed_film(self.film, eps, rate, k.rod_rate),
             )
@@ -505,7 +544,7 @@ fn solve_radau(
                 mech,
                 &k,
                 acc,
-                f.total,
+                (f.total, f.torque),
                 [c * y[0], c * y[1]],
                 [c * y[2], c * y[3]],
             );
@@ -699,8 +738,8 @@ fn solve_bdf2(
     // Sample at t = 0: the ideal configuration (e = 0, ė = 0), force of the film at rest.
     {
         let k = mech.configuration(0.0, [0.0; 2], [0.0; 2])?;
-        let acc = mech.accelerations(&k, [0.0; 2]);
-        out.push_sample(mech, &k, acc, [0.0; 2], [0.0; 2], [0.0; 2]);
+        let acc = mech.accelerations(&k, [0.0; 2], 0.0);
+        out.push_sample(mech, &k, acc, ([0.0; 2], 0.0), [0.0; 2], [0.0; 2]);
         weights.push(0.0);
     }
 
@@ -753,7 +792,7 @@ fn solve_bdf2(
                 mech,
                 &trial.k,
                 trial.acc,
-                trial.force.total,
+                (trial.force.total, trial.force.torque),
                 [c * eps[0], c * eps[1]],
                 [c * rate[0], c * rate[1]],
             );
@@ -1148,7 +1187,7 @@ fn evaluate_bdf2(
         Film::Closed(m) => {
             let m = *m;
             model.eps_acceleration(t, eps, rate, |k| {
-                model.blend(e, ed, impact, || {
+                model.blend(e, ed, k.rod_rate, impact, || {
                     model.closed_film(m, eps, rate, k.rod_rate)
                 })
             })?
@@ -1176,8 +1215,8 @@ fn evaluate_bdf2(
                 let (resp, next) = rf.step(state, fe, dt, &cond).map_err(|e| e.to_string())?;
                 state_slot = Some(next);
                 fields_slot = resp.fields;
-                let f = resp.film_force;
-                let out = model.blend(e, ed, impact, || Ok(f))?;
+                let (f, torque) = (resp.film_force, resp.friction_torque_journal);
+                let out = model.blend(e, ed, k.rod_rate, impact, || Ok((f, torque)))?;
                 if want_jacobian && out.weight < 1.0 {
                     jac_slot = rf.force_jacobian().map(|j| j.map_err(|e| e.to_string()));
                 }
@@ -1224,8 +1263,9 @@ fn bdf2_jacobian(
     trial: &Trial,
 ) -> Result<[[f64; 2]; 2], MechanismError> {
     let c = model.c;
-    // Residual with the film force given (frozen) or the closed form evaluated.
-    let residual = |eps: [f64; 2], frozen: Option<[f64; 2]>| -> Result<[f64; 2], MechanismError> {
+    // Residual with the film force and torque given (frozen) or the closed form evaluated.
+    type Frozen = Option<([f64; 2], f64)>;
+    let residual = |eps: [f64; 2], frozen: Frozen| -> Result<[f64; 2], MechanismError> {
         let rate = [
             (a0 * eps[0] - hist_e[0]) / dt,
             (a0 * eps[1] - hist_e[1]) / dt,
@@ -1237,33 +1277,18 @@ fn bdf2_jacobian(
         let e = [c * eps[0], c * eps[1]];
         let ed = [c * rate[0], c * rate[1]];
         let (g, ..) = model.eps_acceleration(t, eps, rate, |k| match (film, frozen) {
-            (_, Some(f)) => model.blend(e, ed, impact, || Ok(f)),
-            (Film::Closed(m), None) => model.blend(e, ed, impact, || {
+            (_, Some(f)) => model.blend(e, ed, k.rod_rate, impact, || Ok(f)),
+            (Film::Closed(m), None) => model.blend(e, ed, k.rod_rate, impact, || {
                 model.closed_film(*m, eps, rate, k.rod_rate)
             }),
             (Film::Reynolds(_), None) => Err("Reynolds film needs a frozen force".to_string()),
         })?;
         Ok([acc_bdf[0] - g[0], acc_bdf[1] - g[1]])
     };
-    // Film force at the trial (unblended) for the frozen evaluation: recover it from the blend.
+    // The trial's film force and torque before the blend, for the frozen evaluation.
     let frozen = match film {
         Film::Closed(_) => None,
-        Film::Reynolds(_) => {
-            let s = trial.force.weight;
-            if s < 1.0 {
-                let (_, dry) = model.dry(
-                    [c * eps[0], c * eps[1]],
-                    [c * trial.rate[0], c * trial.rate[1]],
-                    impact,
-                );
-                Some([
-                    (trial.force.total[0] - s * dry[0]) / (1.0 - s),
-                    (trial.force.total[1] - s * dry[1]) / (1.0 - s),
-                ])
-            } else {
-                Some([0.0; 2])
-            }
-        }
+        Film::Reynolds(_) => Some((trial.force.film, trial.force.film_torque)),
     };
     let r0 = residual(eps, frozen)?;
     let mut jac = [[0.0; 2]; 2];
@@ -1276,14 +1301,14 @@ fn bdf2_jacobian(
             jac[i][j] = (r1[i] - r0[i]) / h;
         }
     }
-    if let (Some(jf), Some(f0)) = (trial.film_jacobian, frozen) {
+    if let (Some(jf), Some((f0, torque0))) = (trial.film_jacobian, frozen) {
         // − ∂g/∂F · (1 − s) ∂F_film/∂ε; ∂g/∂F by differences (g is linear in F).
         let scale = f0[0].hypot(f0[1]).max(1.0);
         let mut dgdf = [[0.0; 2]; 2];
         for j in 0..2 {
             let mut f1 = f0;
             f1[j] += scale * 1e-6;
-            let r1 = residual(eps, Some(f1))?;
+            let r1 = residual(eps, Some((f1, torque0)))?;
             for i in 0..2 {
                 // r = acc − g: ∂r/∂F = −∂g/∂F (the blend's (1 − s) is inside).
                 dgdf[i][j] = (r1[i] - r0[i]) / (scale * 1e-6);
@@ -1315,7 +1340,7 @@ mod tests {
             let e = [r * dir[0], r * dir[1]];
             let eps = [e[0] / c, e[1] / c];
             let er = [rate[0] / c, rate[1] / c];
-            m.blend(e, rate, 0.05, || {
+            m.blend(e, rate, 200.0, 0.05, || {
                 m.closed_film(ClosedFormModel::PinkusSternlicht, eps, er, 200.0)
             })
             .unwrap()
@@ -1334,9 +1359,13 @@ mod tests {
         assert!((mid.weight - 0.5).abs() < 1e-6);
         // Beyond the band: dry only (film not evaluated even past ε = 1).
         let dry = m
-            .blend([1.01 * c * dir[0], 1.01 * c * dir[1]], rate, 0.05, || {
-                Err("film must not be evaluated".into())
-            })
+            .blend(
+                [1.01 * c * dir[0], 1.01 * c * dir[1]],
+                rate,
+                200.0,
+                0.05,
+                || Err("film must not be evaluated".into()),
+            )
             .unwrap();
         assert_eq!(dry.weight, 1.0);
         assert!(
