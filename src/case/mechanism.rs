@@ -286,6 +286,8 @@ fn link(ctx: &Ctx<'_>, key: &str, l: &LinkSection) -> Result<Link, CaseError> {
     })
 }
 
+/// Resolve a parsed mechanism case: the stages below, in the order their errors are reported
+/// (bodies, joint, the rod's length against both, integrator, film fields).
 fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseError> {
     if raw.sweep.is_some() {
         return Err(ctx.err(
@@ -305,6 +307,39 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
     }
     let name = super::case_name(raw.name.as_deref(), ctx)?;
     let m = &raw.mechanism;
+    let mechanism = resolve_bodies(m, ctx)?;
+    let (joint, film_name) = resolve_joint(m, ctx)?;
+    let (rod, crank) = (mechanism.rod, mechanism.crank);
+    if rod.length <= crank.length + 2.0 * lubricated_clearance(&joint) {
+        return Err(ctx.err(
+            "mechanism.rod.length_m",
+            format!(
+                "the rod ({} m) must be longer than the crank ({} m) (plus the clearance), or \
+                 the slider cannot follow",
+                rod.length, crank.length
+            ),
+        ));
+    }
+    let mut params = MechanismParams::new(mechanism, joint);
+    params.turns = m.turns;
+    params.samples_per_turn = m.samples_per_turn;
+    let integrator_name = resolve_integrator(m, &mut params, ctx)?;
+    resolve_field_snapshots(m, &mut params, ctx)?;
+    Ok(MechanismCase {
+        name,
+        description: raw.description.clone().unwrap_or_default(),
+        path: ctx.file.clone(),
+        text: ctx.text.to_string(),
+        ideal_reference: m.ideal_reference,
+        plots: m.plots,
+        film_name,
+        integrator_name,
+        params,
+    })
+}
+
+/// `[mechanism]`'s drive and run keys and the three bodies.
+fn resolve_bodies(m: &MechanismSection, ctx: &Ctx<'_>) -> Result<SliderCrankParams, CaseError> {
     let speed_rpm = ctx.finite("mechanism.crank_speed_rpm", m.crank_speed_rpm)?;
     if speed_rpm == 0.0 {
         return Err(ctx.err("mechanism.crank_speed_rpm", "must not be 0"));
@@ -336,380 +371,426 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
         initial_crank_angle: deg_to_rad(initial),
         gravity: m.gravity_m_s2,
     };
+    Ok(mechanism)
+}
 
+/// `[mechanism.joint]` (and `[mechanism.contact]`): the joint and the film's name as given.
+fn resolve_joint(
+    m: &MechanismSection,
+    ctx: &Ctx<'_>,
+) -> Result<(RodSliderJoint, String), CaseError> {
+    match m.joint.kind.as_str() {
+        "ideal" => {
+            ideal_joint_keys(m, ctx)?;
+            Ok((RodSliderJoint::Ideal, String::new()))
+        }
+        "lubricated" => lubricated_joint(m, ctx),
+        other => Err(ctx.err(
+            "mechanism.joint.type",
+            format!("unknown joint type \"{other}\": \"ideal\" or \"lubricated\""),
+        )),
+    }
+}
+
+/// An ideal joint has no clearance, film, contact or integrator: any of those keys is an error.
+fn ideal_joint_keys(m: &MechanismSection, ctx: &Ctx<'_>) -> Result<(), CaseError> {
     let j = &m.joint;
     let jk = |s: &str| format!("mechanism.joint.{s}");
-    let (joint, film_name) = match j.kind.as_str() {
-        "ideal" => {
-            for (key, given) in [
-                ("bearing_radius_m", j.bearing_radius_m.is_some()),
-                ("journal_radius_m", j.journal_radius_m.is_some()),
-                ("length_m", j.length_m.is_some()),
-                ("viscosity_pa_s", j.viscosity_pa_s.is_some()),
-                ("film", j.film.is_some()),
-                ("n_theta", j.n_theta.is_some()),
-                ("n_z", j.n_z.is_some()),
-                ("film_torque", j.film_torque.is_some()),
-            ] {
-                if given {
-                    return Err(ctx.err(
-                        &jk(key),
-                        "an ideal joint has no clearance or film: remove the key, or set \
-                         type = \"lubricated\"",
-                    ));
-                }
-            }
-            for (table, given) in [
-                ("mechanism.contact", m.contact.is_some()),
-                ("mechanism.integrator", m.integrator.is_some()),
-            ] {
-                if given {
-                    return Err(ctx.err(
-                        table,
-                        "an ideal joint is solved in closed form: remove the table, or set \
-                         joint.type = \"lubricated\"",
-                    ));
-                }
-            }
-            (RodSliderJoint::Ideal, String::new())
-        }
-        "lubricated" => {
-            let need = |key: &str, v: Option<f64>| {
-                v.ok_or_else(|| {
-                    ctx.err(
-                        &jk(key),
-                        format!("missing: a lubricated joint needs `{key}`"),
-                    )
-                })
-                .and_then(|v| ctx.positive(&jk(key), v))
-            };
-            let bearing_radius = need("bearing_radius_m", j.bearing_radius_m)?;
-            let journal_radius = need("journal_radius_m", j.journal_radius_m)?;
-            let length = need("length_m", j.length_m)?;
-            let viscosity = need("viscosity_pa_s", j.viscosity_pa_s)?;
-            if journal_radius >= bearing_radius {
-                return Err(ctx.err(
-                    &jk("journal_radius_m"),
-                    format!(
-                        "the journal ({journal_radius} m) must be smaller than the bearing \
-                         ({bearing_radius} m): the radial clearance is their difference"
-                    ),
-                ));
-            }
-            let c = bearing_radius - journal_radius;
-            if c >= 0.1 * bearing_radius {
-                return Err(ctx.err(
-                    &jk("journal_radius_m"),
-                    format!(
-                        "radial clearance {c:.6e} m is not small against the radius \
-                         {bearing_radius} m (c/R must be < 0.1)"
-                    ),
-                ));
-            }
-            let film_name = j
-                .film
-                .clone()
-                .unwrap_or_else(|| ClosedFormModel::PinkusSternlicht.name().to_string());
-            let mut joint = LubricatedJointParams {
-                bearing_radius,
-                journal_radius,
-                length,
-                viscosity,
-                film: JointFilm::ClosedForm(ClosedFormModel::PinkusSternlicht),
-                contact: ContactParams::default(),
-                film_torque: j.film_torque.unwrap_or(false),
-            };
-            joint.film = if film_name == "reynolds" {
-                let mut p = joint.reynolds_params();
-                if let Some(n) = j.n_theta {
-                    if n < 8 {
-                        return Err(ctx.err(&jk("n_theta"), format!("must be ≥ 8, got {n}")));
-                    }
-                    p.grid.n_theta = n;
-                }
-                if let Some(n) = j.n_z {
-                    if n < 3 {
-                        return Err(ctx.err(&jk("n_z"), format!("must be ≥ 3, got {n}")));
-                    }
-                    p.grid.n_z = n;
-                }
-                JointFilm::Reynolds(Box::new(p))
-            } else {
-                let model: ClosedFormModel = film_name.parse().map_err(|e: ClosedFormError| {
-                    ctx.err(
-                        &jk("film"),
-                        format!("{e}, or \"reynolds\" (the mass-conserving Reynolds film)"),
-                    )
-                })?;
-                for (key, given) in [("n_theta", j.n_theta), ("n_z", j.n_z)] {
-                    if given.is_some() {
-                        return Err(ctx.err(
-                            &jk(key),
-                            format!(
-                                "a grid is for film = \"reynolds\"; the closed form \
-                                 \"{film_name}\" has none"
-                            ),
-                        ));
-                    }
-                }
-                JointFilm::ClosedForm(model)
-            };
-            if let Some(s) = &m.contact {
-                let d = ContactParams::default();
-                let ck = |s: &str| format!("mechanism.contact.{s}");
-                let pos = |key: &str, v: Option<f64>, default: f64| match v {
-                    Some(v) => ctx.positive(&ck(key), v),
-                    None => Ok(default),
-                };
-                let ratio = |key: &str, v: Option<f64>, default: f64| match v {
-                    Some(v) if !(v.is_finite() && (0.0..0.5).contains(&v)) => Err(ctx.err(
-                        &ck(key),
-                        format!("a Poisson's ratio must be in [0, 0.5), got {v}"),
-                    )),
-                    Some(v) => Ok(v),
-                    None => Ok(default),
-                };
-                joint.contact = ContactParams {
-                    journal_youngs_modulus: pos(
-                        "journal_youngs_modulus_pa",
-                        s.journal_youngs_modulus_pa,
-                        d.journal_youngs_modulus,
-                    )?,
-                    journal_poisson_ratio: ratio(
-                        "journal_poisson_ratio",
-                        s.journal_poisson_ratio,
-                        d.journal_poisson_ratio,
-                    )?,
-                    bearing_youngs_modulus: pos(
-                        "bearing_youngs_modulus_pa",
-                        s.bearing_youngs_modulus_pa,
-                        d.bearing_youngs_modulus,
-                    )?,
-                    bearing_poisson_ratio: ratio(
-                        "bearing_poisson_ratio",
-                        s.bearing_poisson_ratio,
-                        d.bearing_poisson_ratio,
-                    )?,
-                    restitution: match s.restitution {
-                        Some(v) if !(v > 0.0 && v <= 1.0) => {
-                            return Err(ctx.err(
-                                &ck("restitution"),
-                                format!(
-                                    "the coefficient of restitution must be in (0, 1], got {v}"
-                                ),
-                            ));
-                        }
-                        Some(v) => v,
-                        None => d.restitution,
-                    },
-                    boundary_layer: pos("boundary_layer_m", s.boundary_layer_m, d.boundary_layer)?,
-                    blend_width: pos("blend_width_m", s.blend_width_m, d.blend_width)?,
-                    min_impact_speed: pos(
-                        "min_impact_speed_m_s",
-                        s.min_impact_speed_m_s,
-                        d.min_impact_speed,
-                    )?,
-                    friction_coefficient: match s.friction_coefficient {
-                        Some(v) if !(v.is_finite() && v >= 0.0) => {
-                            return Err(ctx.err(
-                                &ck("friction_coefficient"),
-                                format!("a friction coefficient must be ≥ 0, got {v}"),
-                            ));
-                        }
-                        Some(v) => v,
-                        None => d.friction_coefficient,
-                    },
-                    friction_speed: pos(
-                        "friction_speed_m_s",
-                        s.friction_speed_m_s,
-                        d.friction_speed,
-                    )?,
-                };
-                let cc = joint.contact;
-                if cc.blend_width >= cc.boundary_layer {
-                    return Err(ctx.err(
-                        &ck(if s.blend_width_m.is_some() {
-                            "blend_width_m"
-                        } else {
-                            "boundary_layer_m"
-                        }),
-                        format!(
-                            "the blend width e₀ = {:e} m must be smaller than the boundary layer \
-                             h_b = {:e} m",
-                            cc.blend_width, cc.boundary_layer
-                        ),
-                    ));
-                }
-            }
-            if joint.contact.boundary_layer >= c {
-                return Err(ctx.err(
-                    "mechanism.contact.boundary_layer_m",
-                    format!(
-                        "the boundary layer h_b = {:e} m must be smaller than the radial \
-                         clearance {c:e} m",
-                        joint.contact.boundary_layer
-                    ),
-                ));
-            }
-            (RodSliderJoint::Lubricated(joint), film_name)
-        }
-        other => {
+    for (key, given) in [
+        ("bearing_radius_m", j.bearing_radius_m.is_some()),
+        ("journal_radius_m", j.journal_radius_m.is_some()),
+        ("length_m", j.length_m.is_some()),
+        ("viscosity_pa_s", j.viscosity_pa_s.is_some()),
+        ("film", j.film.is_some()),
+        ("n_theta", j.n_theta.is_some()),
+        ("n_z", j.n_z.is_some()),
+        ("film_torque", j.film_torque.is_some()),
+    ] {
+        if given {
             return Err(ctx.err(
-                &jk("type"),
-                format!("unknown joint type \"{other}\": \"ideal\" or \"lubricated\""),
+                &jk(key),
+                "an ideal joint has no clearance or film: remove the key, or set \
+                 type = \"lubricated\"",
             ));
         }
+    }
+    for (table, given) in [
+        ("mechanism.contact", m.contact.is_some()),
+        ("mechanism.integrator", m.integrator.is_some()),
+    ] {
+        if given {
+            return Err(ctx.err(
+                table,
+                "an ideal joint is solved in closed form: remove the table, or set \
+                 joint.type = \"lubricated\"",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The lubricated joint: geometry, film, contact.
+fn lubricated_joint(
+    m: &MechanismSection,
+    ctx: &Ctx<'_>,
+) -> Result<(RodSliderJoint, String), CaseError> {
+    let j = &m.joint;
+    let jk = |s: &str| format!("mechanism.joint.{s}");
+    let need = |key: &str, v: Option<f64>| {
+        v.ok_or_else(|| {
+            ctx.err(
+                &jk(key),
+                format!("missing: a lubricated joint needs `{key}`"),
+            )
+        })
+        .and_then(|v| ctx.positive(&jk(key), v))
     };
-    if rod.length <= crank.length + 2.0 * lubricated_clearance(&joint) {
+    let bearing_radius = need("bearing_radius_m", j.bearing_radius_m)?;
+    let journal_radius = need("journal_radius_m", j.journal_radius_m)?;
+    let length = need("length_m", j.length_m)?;
+    let viscosity = need("viscosity_pa_s", j.viscosity_pa_s)?;
+    if journal_radius >= bearing_radius {
         return Err(ctx.err(
-            "mechanism.rod.length_m",
+            &jk("journal_radius_m"),
             format!(
-                "the rod ({} m) must be longer than the crank ({} m) (plus the clearance), or \
-                 the slider cannot follow",
-                rod.length, crank.length
+                "the journal ({journal_radius} m) must be smaller than the bearing \
+                 ({bearing_radius} m): the radial clearance is their difference"
             ),
         ));
     }
+    let c = bearing_radius - journal_radius;
+    if c >= 0.1 * bearing_radius {
+        return Err(ctx.err(
+            &jk("journal_radius_m"),
+            format!(
+                "radial clearance {c:.6e} m is not small against the radius \
+                 {bearing_radius} m (c/R must be < 0.1)"
+            ),
+        ));
+    }
+    let film_name = j
+        .film
+        .clone()
+        .unwrap_or_else(|| ClosedFormModel::PinkusSternlicht.name().to_string());
+    let mut joint = LubricatedJointParams {
+        bearing_radius,
+        journal_radius,
+        length,
+        viscosity,
+        film: JointFilm::ClosedForm(ClosedFormModel::PinkusSternlicht),
+        contact: ContactParams::default(),
+        film_torque: j.film_torque.unwrap_or(false),
+    };
+    joint.film = joint_film(j, &joint, &film_name, ctx)?;
+    if let Some(s) = &m.contact {
+        joint.contact = contact(s, ctx)?;
+    }
+    if joint.contact.boundary_layer >= c {
+        return Err(ctx.err(
+            "mechanism.contact.boundary_layer_m",
+            format!(
+                "the boundary layer h_b = {:e} m must be smaller than the radial \
+                 clearance {c:e} m",
+                joint.contact.boundary_layer
+            ),
+        ));
+    }
+    Ok((RodSliderJoint::Lubricated(joint), film_name))
+}
 
-    let mut params = MechanismParams::new(mechanism, joint);
-    params.turns = m.turns;
-    params.samples_per_turn = m.samples_per_turn;
-    let integrator_name = match &params.joint {
-        RodSliderJoint::Ideal => String::new(),
-        RodSliderJoint::Lubricated(jp) => {
-            let reynolds = matches!(jp.film, JointFilm::Reynolds(_));
-            let s = m.integrator.as_ref();
-            let method = s
-                .and_then(|s| s.method.clone())
-                .unwrap_or_else(|| if reynolds { "bdf2" } else { "radau5" }.to_string());
-            let ik = |s: &str| format!("mechanism.integrator.{s}");
-            let given = |f: fn(&IntegratorSection) -> bool| s.is_some_and(f);
-            params.integrator = match method.as_str() {
-                "radau5" => {
-                    if reynolds {
-                        return Err(ctx.err(
-                            &ik("method"),
-                            "the Reynolds film needs method = \"bdf2\" (its film state advances \
-                             step by step)",
-                        ));
-                    }
-                    for (key, bad) in [
-                        ("steps_per_turn", given(|s| s.steps_per_turn.is_some())),
-                        ("error_tolerance", given(|s| s.error_tolerance.is_some())),
-                        ("fixed_steps", given(|s| s.fixed_steps.is_some())),
-                        ("newton_tolerance", given(|s| s.newton_tolerance.is_some())),
-                        (
-                            "max_newton_iterations",
-                            given(|s| s.max_newton_iterations.is_some()),
-                        ),
-                    ] {
-                        if bad {
-                            return Err(ctx.err(&ik(key), "is a setting of method = \"bdf2\""));
-                        }
-                    }
-                    let Integrator::Radau5 {
-                        relative_tolerance,
-                        absolute_tolerance,
-                    } = Integrator::radau5_default()
-                    else {
-                        unreachable!("radau5_default is Radau5")
-                    };
-                    let tol = |key: &str, v: Option<f64>, d: f64| match v {
-                        Some(v) => ctx.positive(&ik(key), v),
-                        None => Ok(d),
-                    };
-                    Integrator::Radau5 {
-                        relative_tolerance: tol(
-                            "relative_tolerance",
-                            s.and_then(|s| s.relative_tolerance),
-                            relative_tolerance,
-                        )?,
-                        absolute_tolerance: tol(
-                            "absolute_tolerance",
-                            s.and_then(|s| s.absolute_tolerance),
-                            absolute_tolerance,
-                        )?,
-                    }
-                }
-                "bdf2" => {
-                    for (key, bad) in [
-                        (
-                            "relative_tolerance",
-                            given(|s| s.relative_tolerance.is_some()),
-                        ),
-                        (
-                            "absolute_tolerance",
-                            given(|s| s.absolute_tolerance.is_some()),
-                        ),
-                    ] {
-                        if bad {
-                            return Err(ctx.err(&ik(key), "is a setting of method = \"radau5\""));
-                        }
-                    }
-                    let Integrator::Bdf2 {
-                        steps_per_turn,
-                        error_tolerance,
-                        newton_tolerance,
-                        max_newton_iterations,
-                    } = Integrator::bdf2_controlled()
-                    else {
-                        unreachable!("bdf2_controlled is Bdf2")
-                    };
-                    let steps = s.and_then(|s| s.steps_per_turn).unwrap_or(steps_per_turn);
-                    if steps == 0 || !steps.is_multiple_of(m.samples_per_turn) {
-                        return Err(ctx.err(
-                            if s.and_then(|s| s.steps_per_turn).is_some() {
-                                "mechanism.integrator.steps_per_turn"
-                            } else {
-                                "mechanism.samples_per_turn"
-                            },
-                            format!(
-                                "steps_per_turn ({steps}) must be a positive multiple of \
-                                 samples_per_turn ({})",
-                                m.samples_per_turn
-                            ),
-                        ));
-                    }
-                    let iterations = s
-                        .and_then(|s| s.max_newton_iterations)
-                        .unwrap_or(max_newton_iterations);
-                    if iterations == 0 {
-                        return Err(ctx.err(&ik("max_newton_iterations"), "must be at least 1"));
-                    }
-                    let error_tolerance = match (
-                        s.and_then(|s| s.error_tolerance),
-                        s.and_then(|s| s.fixed_steps).unwrap_or(false),
-                    ) {
-                        (Some(_), true) => {
-                            return Err(ctx.err(
-                                &ik("error_tolerance"),
-                                "fixed_steps = true has no error control: remove one of the two",
-                            ));
-                        }
-                        (Some(v), false) => Some(ctx.positive(&ik("error_tolerance"), v)?),
-                        (None, true) => None,
-                        (None, false) => error_tolerance,
-                    };
-                    Integrator::Bdf2 {
-                        steps_per_turn: steps,
-                        error_tolerance,
-                        newton_tolerance: match s.and_then(|s| s.newton_tolerance) {
-                            Some(v) => ctx.positive(&ik("newton_tolerance"), v)?,
-                            None => newton_tolerance,
-                        },
-                        max_newton_iterations: iterations,
-                    }
-                }
-                other => {
-                    return Err(ctx.err(
-                        &ik("method"),
-                        format!("unknown integrator \"{other}\": \"radau5\" or \"bdf2\""),
-                    ));
-                }
-            };
-            method
+/// The film model named by `joint.film` (`"reynolds"` with its grid, or a closed form).
+fn joint_film(
+    j: &JointSection,
+    joint: &LubricatedJointParams,
+    film_name: &str,
+    ctx: &Ctx<'_>,
+) -> Result<JointFilm, CaseError> {
+    let jk = |s: &str| format!("mechanism.joint.{s}");
+    Ok(if film_name == "reynolds" {
+        let mut p = joint.reynolds_params();
+        if let Some(n) = j.n_theta {
+            if n < 8 {
+                return Err(ctx.err(&jk("n_theta"), format!("must be ≥ 8, got {n}")));
+            }
+            p.grid.n_theta = n;
+        }
+        if let Some(n) = j.n_z {
+            if n < 3 {
+                return Err(ctx.err(&jk("n_z"), format!("must be ≥ 3, got {n}")));
+            }
+            p.grid.n_z = n;
+        }
+        JointFilm::Reynolds(Box::new(p))
+    } else {
+        let model: ClosedFormModel = film_name.parse().map_err(|e: ClosedFormError| {
+            ctx.err(
+                &jk("film"),
+                format!("{e}, or \"reynolds\" (the mass-conserving Reynolds film)"),
+            )
+        })?;
+        for (key, given) in [("n_theta", j.n_theta), ("n_z", j.n_z)] {
+            if given.is_some() {
+                return Err(ctx.err(
+                    &jk(key),
+                    format!(
+                        "a grid is for film = \"reynolds\"; the closed form \
+                         \"{film_name}\" has none"
+                    ),
+                ));
+            }
+        }
+        JointFilm::ClosedForm(model)
+    })
+}
+
+/// `[mechanism.contact]`: every key defaulted from [`ContactParams::default`] and checked.
+fn contact(s: &ContactSection, ctx: &Ctx<'_>) -> Result<ContactParams, CaseError> {
+    let d = ContactParams::default();
+    let ck = |s: &str| format!("mechanism.contact.{s}");
+    let pos = |key: &str, v: Option<f64>, default: f64| match v {
+        Some(v) => ctx.positive(&ck(key), v),
+        None => Ok(default),
+    };
+    let ratio = |key: &str, v: Option<f64>, default: f64| match v {
+        Some(v) if !(v.is_finite() && (0.0..0.5).contains(&v)) => Err(ctx.err(
+            &ck(key),
+            format!("a Poisson's ratio must be in [0, 0.5), got {v}"),
+        )),
+        Some(v) => Ok(v),
+        None => Ok(default),
+    };
+    let joint_contact = ContactParams {
+        journal_youngs_modulus: pos(
+            "journal_youngs_modulus_pa",
+            s.journal_youngs_modulus_pa,
+            d.journal_youngs_modulus,
+        )?,
+        journal_poisson_ratio: ratio(
+            "journal_poisson_ratio",
+            s.journal_poisson_ratio,
+            d.journal_poisson_ratio,
+        )?,
+        bearing_youngs_modulus: pos(
+            "bearing_youngs_modulus_pa",
+            s.bearing_youngs_modulus_pa,
+            d.bearing_youngs_modulus,
+        )?,
+        bearing_poisson_ratio: ratio(
+            "bearing_poisson_ratio",
+            s.bearing_poisson_ratio,
+            d.bearing_poisson_ratio,
+        )?,
+        restitution: match s.restitution {
+            Some(v) if !(v > 0.0 && v <= 1.0) => {
+                return Err(ctx.err(
+                    &ck("restitution"),
+                    format!("the coefficient of restitution must be in (0, 1], got {v}"),
+                ));
+            }
+            Some(v) => v,
+            None => d.restitution,
+        },
+        boundary_layer: pos("boundary_layer_m", s.boundary_layer_m, d.boundary_layer)?,
+        blend_width: pos("blend_width_m", s.blend_width_m, d.blend_width)?,
+        min_impact_speed: pos(
+            "min_impact_speed_m_s",
+            s.min_impact_speed_m_s,
+            d.min_impact_speed,
+        )?,
+        friction_coefficient: match s.friction_coefficient {
+            Some(v) if !(v.is_finite() && v >= 0.0) => {
+                return Err(ctx.err(
+                    &ck("friction_coefficient"),
+                    format!("a friction coefficient must be ≥ 0, got {v}"),
+                ));
+            }
+            Some(v) => v,
+            None => d.friction_coefficient,
+        },
+        friction_speed: pos("friction_speed_m_s", s.friction_speed_m_s, d.friction_speed)?,
+    };
+    let cc = joint_contact;
+    if cc.blend_width >= cc.boundary_layer {
+        return Err(ctx.err(
+            &ck(if s.blend_width_m.is_some() {
+                "blend_width_m"
+            } else {
+                "boundary_layer_m"
+            }),
+            format!(
+                "the blend width e₀ = {:e} m must be smaller than the boundary layer \
+                 h_b = {:e} m",
+                cc.blend_width, cc.boundary_layer
+            ),
+        ));
+    }
+    Ok(joint_contact)
+}
+
+/// `[mechanism.integrator]`: the method (default by film) and its settings; returns its name.
+fn resolve_integrator(
+    m: &MechanismSection,
+    params: &mut MechanismParams,
+    ctx: &Ctx<'_>,
+) -> Result<String, CaseError> {
+    let RodSliderJoint::Lubricated(jp) = &params.joint else {
+        return Ok(String::new());
+    };
+    let reynolds = matches!(jp.film, JointFilm::Reynolds(_));
+    let s = m.integrator.as_ref();
+    let method = s
+        .and_then(|s| s.method.clone())
+        .unwrap_or_else(|| if reynolds { "bdf2" } else { "radau5" }.to_string());
+    params.integrator = match method.as_str() {
+        "radau5" => radau5_integrator(s, reynolds, ctx)?,
+        "bdf2" => bdf2_integrator(s, m, ctx)?,
+        other => {
+            return Err(ctx.err(
+                "mechanism.integrator.method",
+                format!("unknown integrator \"{other}\": \"radau5\" or \"bdf2\""),
+            ));
         }
     };
+    Ok(method)
+}
+
+/// `method = "radau5"`: its tolerances; a BDF2 key or a Reynolds film is an error.
+fn radau5_integrator(
+    s: Option<&IntegratorSection>,
+    reynolds: bool,
+    ctx: &Ctx<'_>,
+) -> Result<Integrator, CaseError> {
+    let ik = |s: &str| format!("mechanism.integrator.{s}");
+    let given = |f: fn(&IntegratorSection) -> bool| s.is_some_and(f);
+    if reynolds {
+        return Err(ctx.err(
+            &ik("method"),
+            "the Reynolds film needs method = \"bdf2\" (its film state advances \
+             step by step)",
+        ));
+    }
+    for (key, bad) in [
+        ("steps_per_turn", given(|s| s.steps_per_turn.is_some())),
+        ("error_tolerance", given(|s| s.error_tolerance.is_some())),
+        ("fixed_steps", given(|s| s.fixed_steps.is_some())),
+        ("newton_tolerance", given(|s| s.newton_tolerance.is_some())),
+        (
+            "max_newton_iterations",
+            given(|s| s.max_newton_iterations.is_some()),
+        ),
+    ] {
+        if bad {
+            return Err(ctx.err(&ik(key), "is a setting of method = \"bdf2\""));
+        }
+    }
+    let Integrator::Radau5 {
+        relative_tolerance,
+        absolute_tolerance,
+    } = Integrator::radau5_default()
+    else {
+        unreachable!("radau5_default is Radau5")
+    };
+    let tol = |key: &str, v: Option<f64>, d: f64| match v {
+        Some(v) => ctx.positive(&ik(key), v),
+        None => Ok(d),
+    };
+    Ok(Integrator::Radau5 {
+        relative_tolerance: tol(
+            "relative_tolerance",
+            s.and_then(|s| s.relative_tolerance),
+            relative_tolerance,
+        )?,
+        absolute_tolerance: tol(
+            "absolute_tolerance",
+            s.and_then(|s| s.absolute_tolerance),
+            absolute_tolerance,
+        )?,
+    })
+}
+
+/// `method = "bdf2"`: steps, error control or fixed steps, Newton settings.
+fn bdf2_integrator(
+    s: Option<&IntegratorSection>,
+    m: &MechanismSection,
+    ctx: &Ctx<'_>,
+) -> Result<Integrator, CaseError> {
+    let ik = |s: &str| format!("mechanism.integrator.{s}");
+    let given = |f: fn(&IntegratorSection) -> bool| s.is_some_and(f);
+    for (key, bad) in [
+        (
+            "relative_tolerance",
+            given(|s| s.relative_tolerance.is_some()),
+        ),
+        (
+            "absolute_tolerance",
+            given(|s| s.absolute_tolerance.is_some()),
+        ),
+    ] {
+        if bad {
+            return Err(ctx.err(&ik(key), "is a setting of method = \"radau5\""));
+        }
+    }
+    let Integrator::Bdf2 {
+        steps_per_turn,
+        error_tolerance,
+        newton_tolerance,
+        max_newton_iterations,
+    } = Integrator::bdf2_controlled()
+    else {
+        unreachable!("bdf2_controlled is Bdf2")
+    };
+    let steps = s.and_then(|s| s.steps_per_turn).unwrap_or(steps_per_turn);
+    if steps == 0 || !steps.is_multiple_of(m.samples_per_turn) {
+        return Err(ctx.err(
+            if s.and_then(|s| s.steps_per_turn).is_some() {
+                "mechanism.integrator.steps_per_turn"
+            } else {
+                "mechanism.samples_per_turn"
+            },
+            format!(
+                "steps_per_turn ({steps}) must be a positive multiple of \
+                 samples_per_turn ({})",
+                m.samples_per_turn
+            ),
+        ));
+    }
+    let iterations = s
+        .and_then(|s| s.max_newton_iterations)
+        .unwrap_or(max_newton_iterations);
+    if iterations == 0 {
+        return Err(ctx.err(&ik("max_newton_iterations"), "must be at least 1"));
+    }
+    let error_tolerance = match (
+        s.and_then(|s| s.error_tolerance),
+        s.and_then(|s| s.fixed_steps).unwrap_or(false),
+    ) {
+        (Some(_), true) => {
+            return Err(ctx.err(
+                &ik("error_tolerance"),
+                "fixed_steps = true has no error control: remove one of the two",
+            ));
+        }
+        (Some(v), false) => Some(ctx.positive(&ik("error_tolerance"), v)?),
+        (None, true) => None,
+        (None, false) => error_tolerance,
+    };
+    Ok(Integrator::Bdf2 {
+        steps_per_turn: steps,
+        error_tolerance,
+        newton_tolerance: match s.and_then(|s| s.newton_tolerance) {
+            Some(v) => ctx.positive(&ik("newton_tolerance"), v)?,
+            None => newton_tolerance,
+        },
+        max_newton_iterations: iterations,
+    })
+}
+
+/// `field_snapshots`: Reynolds film only, at most one per BDF2 step.
+fn resolve_field_snapshots(
+    m: &MechanismSection,
+    params: &mut MechanismParams,
+    ctx: &Ctx<'_>,
+) -> Result<(), CaseError> {
     if let Some(n) = m.field_snapshots {
         let reynolds = matches!(
             &params.joint,
@@ -737,17 +818,7 @@ fn resolve(raw: MechanismCaseFile, ctx: &Ctx<'_>) -> Result<MechanismCase, CaseE
         // The default, on a coarser time grid: one snapshot per step.
         params.field_snapshots = params.field_snapshots.min(steps_per_turn);
     }
-    Ok(MechanismCase {
-        name,
-        description: raw.description.clone().unwrap_or_default(),
-        path: ctx.file.clone(),
-        text: ctx.text.to_string(),
-        ideal_reference: m.ideal_reference,
-        plots: m.plots,
-        film_name,
-        integrator_name,
-        params,
-    })
+    Ok(())
 }
 
 fn lubricated_clearance(joint: &RodSliderJoint) -> f64 {
