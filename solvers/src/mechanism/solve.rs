@@ -17,6 +17,25 @@ use differential_equations::prelude::{
 use std::cell::RefCell;
 
 /// Run the mechanism for `params.turns` crank turns from t = 0.
+///
+/// ```
+/// use jbearing_solvers::mechanism::{
+///     solve_mechanism, MechanismParams, MechanismSolution, RodSliderJoint, SliderCrankParams,
+/// };
+///
+/// // [Flores2009] §8: with the 0.2 mm, 400 cP gudgeon pin the film is never broken (no dry
+/// // contact, the journal stays inside the clearance), and the joint force is of the ideal
+/// // joint's order: the two peaks within 10 %.
+/// let lubricated = solve_mechanism(&MechanismParams::flores2009())?;
+/// assert!(lubricated.contact_events.is_empty());
+/// assert!(lubricated.eccentricity.iter().all(|e| e[0].hypot(e[1]) < 0.2e-3));
+/// let ideal = solve_mechanism(&MechanismParams::new(SliderCrankParams::flores2009(), RodSliderJoint::Ideal))?;
+/// let peak = |s: &MechanismSolution| {
+///     s.loads.iter().map(|l| l.rod_slider[0].hypot(l.rod_slider[1])).fold(0.0, f64::max)
+/// };
+/// assert!((peak(&lubricated) / peak(&ideal) - 1.0).abs() < 0.1);
+/// # Ok::<(), jbearing_solvers::mechanism::MechanismError>(())
+/// ```
 pub fn solve_mechanism(params: &MechanismParams) -> Result<MechanismSolution, MechanismError> {
     let bad = |name: &'static str, value: f64| MechanismError::InvalidParameter { name, value };
     if params.turns == 0 {
