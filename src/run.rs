@@ -188,6 +188,9 @@ pub enum RigorousError {
     /// The inverse solve failed (collapse, Newton, film; with time, crank angle and ε).
     #[error(transparent)]
     Inverse(#[from] jbearing_solvers::inverse::InverseError),
+    /// The elastic structure of the deformable film could not be built.
+    #[error("elastic structure: {0}")]
+    Elastic(#[from] jbearing_solvers::elastic::ElasticError),
 }
 
 /// Why the finite-length mobility map of an L/D could not be built.
@@ -231,6 +234,8 @@ pub enum RigorousStart {
     Reynolds(Box<InverseStart<jbearing_solvers::reynolds::FilmState>>),
     /// The short-bearing film's.
     ShortBearing(InverseStart<jbearing_solvers::inverse::ClosedFormState>),
+    /// The deformable Reynolds film's (a case with `[elastic]`).
+    Elastic(Box<InverseStart<jbearing_solvers::elastic::ElasticFilmState>>),
 }
 
 /// [`run_rigorous`] started from where an earlier solve of the case ended (`start`, skipping
@@ -248,6 +253,30 @@ pub fn run_rigorous_from(
         source,
     };
     let (solution, end, description) = match case.solver.rigorous_film {
+        RigorousFilm::Reynolds if case.elastic.is_some() => {
+            observer.method_started(&case.name, Method::Rigorous);
+            let elastic = case.elastic.clone().expect("matched");
+            let bearing = jbearing_solvers::elastic::ElasticBearing::new(case.radius, elastic)
+                .map_err(|e| fail(e.into()))?;
+            let mut film =
+                jbearing_solvers::elastic::ElasticFilm::new(reynolds_params(case), &bearing)
+                    .map_err(|e| fail(e.into()))?;
+            let from = match start {
+                Some(RigorousStart::Elastic(s)) => Some(InverseStart::clone(s)),
+                _ => None,
+            };
+            let (solution, end) =
+                solve_inverse_from(&params, &history, &mut film, &mut adapter, from)
+                    .map_err(|e| fail(e.into()))?;
+            (
+                solution,
+                RigorousStart::Elastic(Box::new(end)),
+                "inverse solver (Newton on eccentricity per time step) with the mass-conserving \
+                 universal Reynolds (Elrod-Vijayaraghavan, JFO) film and elastic shaft and \
+                 housing ([elastic]: plane-strain FE compliance, the gap g = C p solved \
+                 quasi-statically in every film step)",
+            )
+        }
         RigorousFilm::Reynolds => {
             observer.method_started(&case.name, Method::Rigorous);
             let mut film = ReynoldsFilm::new(reynolds_params(case)).map_err(|e| fail(e.into()))?;
@@ -344,9 +373,13 @@ pub struct ElasticProblem {
     pub conditions: OperatingConditions,
 }
 
-/// The [`ElasticProblem`] of `case`, None without `[elastic]`. The case check has made sure an
-/// elastic case is steady (one load point, constant speeds and feed).
+/// The [`ElasticProblem`] of `case`, None without `[elastic]` or when the case is not steady
+/// (one load point, constant speeds; a dynamic case takes the deformation in the rigorous
+/// method instead).
 pub fn elastic_problem(case: &Case) -> Option<ElasticProblem> {
+    if !crate::closed_form_report::is_steady(case) {
+        return None;
+    }
     let elastic = case.elastic.clone()?;
     let mut film = reynolds_params(case);
     if case.grooves.is_empty() {

@@ -133,9 +133,10 @@ fn shipped_cases_pass_check() {
         "cases/flores2006_mobility.toml",
         "cases/benasciutti_jb1_steady.toml",
         "cases/benasciutti_jb1_elastic.toml",
+        "cases/compressor_rod_elastic.toml",
     ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
-    assert_eq!(text(&out.stdout).lines().count(), 5);
+    assert_eq!(text(&out.stdout).lines().count(), 6);
 }
 
 fn assert_case_files(dir: &Path, name: &str) {
@@ -1024,4 +1025,64 @@ fn heat_balance_results_are_reported_and_consistent() {
             power[m]
         );
     }
+}
+
+/// `[elastic]` on a dynamically loaded case: the rigorous method steps the deformable film.
+/// Its limits: a structure 1e4 times stiffer than steel gives the rigid film's orbit (cycle
+/// maximum of |ε| within 1e-4: the gaps are ~1e-10 m against a 40 µm clearance, plus the
+/// solver's Newton tolerance; not h_min, which the deformed film takes at its thinnest node
+/// and the rigid one exactly), a soft one (E = 20 GPa, a tenth of steel) a different one (by
+/// more than 1 %); the result says which film it is.
+#[test]
+fn elastic_section_deforms_the_rigorous_film_of_a_dynamic_case() {
+    let dir = tempfile::tempdir().unwrap();
+    let elastic = |e: f64| {
+        format!(
+            "[elastic]\nyoungs_modulus_pa = {e:e}\npoisson_ratio = 0.3\n\
+             shaft_hole_radius_m = 0.01\nhousing_half_width_m = 0.05\nn_theta = 36\n\
+             gap_tolerance = 1e-4\n"
+        )
+    };
+    let mut eps_max = Vec::new();
+    for (name, extra) in [
+        ("rigid", String::new()),
+        ("stiff", elastic(210e9 * 1e4)),
+        ("soft", elastic(20e9)),
+    ] {
+        let case = dir.path().join(format!("{name}.toml"));
+        let body = thermal_case_text(
+            name,
+            "[lubricant]\nviscosity_pa_s = 0.02\n",
+            "rigorous = true\nmobility = false",
+        )
+        // Three cycles are enough to compare the orbits (and keep the test short).
+        .replace("max_cycles = 8", "max_cycles = 3")
+            + &extra;
+        std::fs::write(&case, body).unwrap();
+        let out = run_into(&case, dir.path(), &[]);
+        assert!(out.status.success(), "{name}: {}", text(&out.stderr));
+        let f = hdf5_metno::File::open(dir.path().join(format!("{name}.h5"))).unwrap();
+        let h: Vec<f64> = f
+            .dataset("rigorous/eccentricity_ratio")
+            .unwrap()
+            .read_raw()
+            .unwrap();
+        let description: hdf5_metno::types::VarLenUnicode = f
+            .group("rigorous")
+            .unwrap()
+            .attr("film_model")
+            .unwrap()
+            .read_scalar()
+            .unwrap();
+        assert_eq!(
+            description.as_str().contains("elastic shaft and housing"),
+            name != "rigid",
+            "{name}: {}",
+            description.as_str()
+        );
+        eps_max.push(h.iter().copied().fold(0.0, f64::max));
+    }
+    eprintln!("cycle-max eccentricity ratio rigid / stiff / soft: {eps_max:?}");
+    assert!((eps_max[1] / eps_max[0] - 1.0).abs() < 1e-4, "{eps_max:?}");
+    assert!((eps_max[2] / eps_max[0] - 1.0).abs() > 0.01, "{eps_max:?}");
 }

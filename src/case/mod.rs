@@ -271,8 +271,9 @@ pub struct Case {
     pub methods: Methods,
     /// Closed-form models of the static-equilibrium table (empty: no table).
     pub closed_form_models: Vec<ClosedFormModel>,
-    /// Elastic shaft and housing (`[elastic]`): the deformable steady-load solve
-    /// (`jbearing_solvers::elastic::solve_steady_load`) runs beside the methods.
+    /// Elastic shaft and housing (`[elastic]`): on a steady case the deformable steady-load
+    /// solve (`jbearing_solvers::elastic::solve_steady_load`) runs beside the methods; the
+    /// rigorous method steps the deformable film (`jbearing_solvers::elastic::ElasticFilm`).
     pub elastic: Option<ElasticParams>,
     /// Values far outside what journal bearings have (the ranges: [`PLAUSIBLE_CLEARANCE_RATIO`]).
     pub warnings: Vec<CaseWarning>,
@@ -1052,10 +1053,12 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
     let steady = load_forces.iter().all(|f| *f == load_forces[0])
         && matches!(journal_speed, Schedule::Constant(_))
         && matches!(bearing_speed, Schedule::Constant(_));
+    // A dynamic case takes the deformation in the rigorous (inverse) method's Reynolds film.
+    let dynamic_ok = m.rigorous && solver.rigorous_film == RigorousFilm::Reynolds;
     let elastic = raw
         .elastic
         .as_ref()
-        .map(|e| resolve_elastic(e, radius, steady, ctx))
+        .map(|e| resolve_elastic(e, radius, steady || dynamic_ok, ctx))
         .transpose()?;
     if !(m.mobility || m.rigorous || !closed_form_models.is_empty() || elastic.is_some()) {
         return Err(ctx.err(
@@ -1132,14 +1135,15 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
 fn resolve_elastic(
     e: &ElasticSection,
     radius: f64,
-    steady: bool,
+    solvable: bool,
     ctx: &Ctx<'_>,
 ) -> Result<ElasticParams, CaseError> {
-    if !steady {
+    if !solvable {
         return Err(ctx.err(
             "elastic",
-            "the deformable (elastic) bearing is solved for a steady case only: one load point \
-             and constant journal and bearing speeds",
+            "a dynamically loaded case takes the elastic deformation in the rigorous method's \
+             Reynolds film: set methods.rigorous = true (with solver.rigorous_film = \
+             \"reynolds\"), or make the case steady (one load point, constant speeds)",
         ));
     }
     let youngs_modulus = ctx.positive("elastic.youngs_modulus_pa", e.youngs_modulus_pa)?;

@@ -212,20 +212,36 @@ fn periodic_interpolation(theta0: f64, values: &[f64], theta: f64) -> f64 {
 
 /// p̄ at the structure's surface nodes from a film solution (module docs).
 fn surface_pressure(film: &FilmSolution, ambient: f64, angles: &[f64]) -> Vec<f64> {
-    let (nt, nz) = film.pressure.dim();
+    length_mean_at(&film.pressure, film.theta[0], ambient, angles)
+}
+
+/// p̄ at `angles` from a film pressure field `pressure[[i, j]]` at θ_i = θ_0 + 2πi/n_θ.
+pub(crate) fn length_mean_at(
+    pressure: &ndarray::Array2<f64>,
+    theta0: f64,
+    ambient: f64,
+    angles: &[f64],
+) -> Vec<f64> {
+    let (nt, nz) = pressure.dim();
     // Interior rows are the equal cells tiling the length; the end rows are boundary points.
     let mean: Vec<f64> = (0..nt)
-        .map(|i| {
-            (1..nz - 1)
-                .map(|j| film.pressure[[i, j]] - ambient)
-                .sum::<f64>()
-                / (nz - 2) as f64
-        })
+        .map(|i| (1..nz - 1).map(|j| pressure[[i, j]] - ambient).sum::<f64>() / (nz - 2) as f64)
         .collect();
     angles
         .iter()
-        .map(|&th| periodic_interpolation(film.theta[0], &mean, th))
+        .map(|&th| periodic_interpolation(theta0, &mean, th))
         .collect()
+}
+
+/// Aitken's relaxation factor from the last two residuals (module docs), unclamped; `omega`
+/// when the residual did not change.
+pub(crate) fn aitken(omega: f64, previous: &[f64], residual: &[f64]) -> f64 {
+    let (mut num, mut den) = (0.0, 0.0);
+    for (a, b) in previous.iter().zip(residual) {
+        num += a * (b - a);
+        den += (b - a) * (b - a);
+    }
+    if den > 0.0 { -omega * num / den } else { omega }
 }
 
 /// The steady load `load` (N, on the journal) carried by the deformable bearing: the film of
@@ -279,14 +295,7 @@ pub fn solve_steady_load(
             ));
         }
         if let Some(prev) = &previous_residual {
-            let (mut num, mut den) = (0.0, 0.0);
-            for (a, b) in prev.iter().zip(&r) {
-                num += a * (b - a);
-                den += (b - a) * (b - a);
-            }
-            if den > 0.0 {
-                omega = (-omega * num / den).clamp(p.min_relaxation, 1.0);
-            }
+            omega = aitken(omega, prev, &r).clamp(p.min_relaxation, 1.0);
         }
         for (gk, rk) in g.iter_mut().zip(&r) {
             *gk += omega * rk;

@@ -22,7 +22,8 @@
 //! the paper's g(θ) with the sign that opens the gap under pressure), added to the rigid film
 //! h = c − e cos θ. [`Compliance`] is the matrix g = C p (film-surface pressures → gap
 //! changes), computed once from the factorized stiffnesses of both bodies; `coupling` solves
-//! the coupled film–structure steady-load problem with it.
+//! the coupled film–structure steady-load problem with it, and [`ElasticFilm`] puts the same
+//! compliance into the inverse solver's time steps (quasi-static, `dynamic`).
 //!
 //! Checked in the tests here against the patch test (any linear displacement field exactly on
 //! a distorted mesh) and Lamé's thick cylinder (\[TimoshenkoGoodier1970\]) with its measured
@@ -32,6 +33,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod coupling;
+mod dynamic;
 mod element;
 mod mesh;
 
@@ -43,6 +45,7 @@ use thiserror::Error;
 pub use coupling::{
     ElasticBearing, ElasticInfo, ElasticParams, ElasticSolution, solve_steady_load,
 };
+pub use dynamic::{ElasticFilm, ElasticFilmState};
 pub use element::Material;
 pub use mesh::{FluidSide, HousingShape, Mesh, Support, square_layers};
 

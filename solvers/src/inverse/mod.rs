@@ -142,6 +142,18 @@ pub enum FilmModelError {
     /// The Reynolds film solver failed.
     #[error("Reynolds film: {0}")]
     Reynolds(#[from] crate::reynolds::ReynoldsError),
+    /// A quantity the film model iterates within a step (the elastic gap of
+    /// `crate::elastic::ElasticFilm`) did not converge.
+    #[error(
+        "{what} not converged within the step after {iterations} iterations: residual \
+         {residual:e} > tolerance {tolerance:e}"
+    )]
+    NotConverged {
+        what: &'static str,
+        iterations: usize,
+        residual: f64,
+        tolerance: f64,
+    },
 }
 
 /// A film that can be stepped from its state at t^n to a trial eccentricity at t^n + dt.

@@ -304,6 +304,10 @@ pub struct FilmState {
     /// Content h φ of each node at the level before this one and the step from there to this
     /// one, s (BDF2 needs them; None: the next step is a backward-Euler step).
     pub previous_level: Option<(Array2<f64>, f64)>,
+    /// The gap change the film had at this level ([`ReynoldsSolver::set_deformation`] when the
+    /// step was solved; None: rigid). The next step's old content h φ takes it, so that the
+    /// squeeze term sees the deformation's rate.
+    pub deformation: Option<FilmDeformation>,
 }
 
 /// Everything a solve returns (SI units; angles in rad; locations as (θ, z)).
@@ -502,8 +506,26 @@ pub struct ReynoldsSolver {
     last: Option<Linearization>,
     /// ∂ψ/∂ε_x and ∂ψ/∂ε_y of the last Jacobian (the start of the next one's solves).
     sensitivity: [Vec<f64>; 2],
-    /// Gap change of elastic surfaces added to the rigid film (steady solves only).
+    /// Gap change of elastic surfaces added to the rigid film (steady solves and time steps;
+    /// a step's old level takes the gap its state carries).
     deformation: Option<FilmDeformation>,
+}
+
+/// The deformed film's thinnest node (the rigid c(1 − |ε|) of `film_solution` is no longer it).
+fn deformed_min_film(sol: &mut FilmSolution, core: &Core) {
+    let (k, h) =
+        core.h.iter().enumerate().fold(
+            (0, f64::INFINITY),
+            |m, (k, &h)| if h < m.1 { (k, h) } else { m },
+        );
+    let nz = core.grid.n_z;
+    sol.min_film_thickness = h;
+    sol.min_film_location = [
+        core.grid
+            .theta(k / nz)
+            .rem_euclid(2.0 * std::f64::consts::PI),
+        core.grid.z(k % nz),
+    ];
 }
 
 /// A gap change g(θ) added to the rigid film thickness, h = c − e cos(θ − ψ) + g(θ) (the
@@ -630,10 +652,12 @@ impl ReynoldsSolver {
         })
     }
 
-    /// Adds a gap change to the film of the following steady solves (None: the rigid film).
-    /// With a deformation the eccentricity ratio may exceed 1 as long as the film stays open
-    /// (a deformed bore can let the journal centre move beyond the nominal clearance,
-    /// \[Benasciutti2012\] Fig. 6b); time steps refuse it.
+    /// Adds a gap change to the film of the following solves (None: the rigid film). With a
+    /// deformation the eccentricity ratio may exceed 1 as long as the film stays open (a
+    /// deformed bore can let the journal centre move beyond the nominal clearance,
+    /// \[Benasciutti2012\] Fig. 6b). A time step solves its new level with this gap and takes
+    /// its old level's from the state ([`FilmState::deformation`]), which it returns set to
+    /// this one.
     pub fn set_deformation(&mut self, deformation: Option<FilmDeformation>) {
         self.deformation = deformation;
     }
@@ -671,6 +695,7 @@ impl ReynoldsSolver {
             full_film: Array2::from_elem((n_theta, n_z), true),
             net_outflow: None,
             previous_level: None,
+            deformation: None,
         }
     }
 
@@ -760,19 +785,22 @@ impl ReynoldsSolver {
         } else {
             self.step_core(input, bdf2, backward_euler, (psi0, g0))?
         };
-        let sol = outputs::film_solution(
+        let mut sol = outputs::film_solution(
             &self.params,
             &input.conditions,
             input.eccentricity_ratio,
             &core,
             &self.viscosity_field,
         );
+        if self.deformation.is_some() {
+            deformed_min_film(&mut sol, &core);
+        }
         let new_state = self.state_after(&core, input, old.content);
         Ok((sol, new_state))
     }
 
-    /// A time step needs the groove supply model, a positive finite Δt, a state of this grid,
-    /// no deformation (steady solves only) and |ε| < 1 at the old level.
+    /// A time step needs the groove supply model, a positive finite Δt, a state of this grid
+    /// and |ε| < 1 at the old level (unless the old level was deformed).
     fn check_step(&self, state: &FilmState, input: &StepInput) -> Result<(), ReynoldsError> {
         if self.params.supply != SupplyModel::Grooves {
             return Err(ReynoldsError::Unsupported {
@@ -794,12 +822,12 @@ impl ReynoldsSolver {
                 reason: "state fields do not match the grid size",
             });
         }
-        if self.deformation.is_some() {
-            return Err(ReynoldsError::Unsupported {
-                what: "a film deformation is supported in steady solves only",
-            });
+        // A deformed film may carry the journal beyond the rigid clearance circle (its own
+        // closure is checked where h is built).
+        match state.deformation {
+            None => check_eps(state.eccentricity_ratio),
+            Some(_) => Ok(()),
         }
-        check_eps(state.eccentricity_ratio)
     }
 
     /// What the time scheme takes from the old level: the content hⁿφⁿ, the net outflow Dⁿ
@@ -811,7 +839,7 @@ impl ReynoldsSolver {
             &self.grid,
             self.params.clearance,
             state.eccentricity_ratio,
-            None,
+            state.deformation.as_ref(),
         );
         let content: Vec<f64> = old_h
             .node
@@ -861,6 +889,7 @@ impl ReynoldsSolver {
                 .expect("grid shape"),
             net_outflow: Some(field(out)),
             previous_level: Some((field(old_content), input.dt)),
+            deformation: self.deformation.clone(),
         }
     }
 
@@ -1015,23 +1044,7 @@ impl ReynoldsSolver {
             &self.viscosity_field,
         );
         if self.deformation.is_some() {
-            // The deformed film's thinnest node (the rigid c(1 − |ε|) is no longer it).
-            let (k, h) = core
-                .h
-                .iter()
-                .enumerate()
-                .fold(
-                    (0, f64::INFINITY),
-                    |m, (k, &h)| if h < m.1 { (k, h) } else { m },
-                );
-            let nz = core.grid.n_z;
-            sol.min_film_thickness = h;
-            sol.min_film_location = [
-                core.grid
-                    .theta(k / nz)
-                    .rem_euclid(2.0 * std::f64::consts::PI),
-                core.grid.z(k % nz),
-            ];
+            deformed_min_film(&mut sol, &core);
         }
         Ok(sol)
     }

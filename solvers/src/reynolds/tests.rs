@@ -844,8 +844,7 @@ fn recirculated_flow_is_the_couette_flow_arriving_at_the_groove() {
 /// c + δ at ε' on the same grid — here at |ε| = 1.08, which only a deformation allows. Both
 /// are solved by the sparse-LU oracle to the 1e-10 mass residual with the same switch
 /// pattern: pressures agree to 1e-7 of p_max (the oracle test's tolerance), forces likewise.
-/// A deformation that closes the film is refused with the place where it closes, and time
-/// steps refuse a deformation.
+/// A deformation that closes the film is refused with the place where it closes.
 #[test]
 fn uniform_deformation_is_a_larger_clearance() {
     let c = 50e-6;
@@ -889,15 +888,55 @@ fn uniform_deformation_is_a_larger_clearance() {
         Err(ReynoldsError::FilmClosed { thickness, .. }) => assert!(thickness < 0.0),
         other => panic!("expected FilmClosed, got {other:?}"),
     }
-    let state = s.initial_state([0.1, 0.0]);
-    let step = StepInput {
-        eccentricity_ratio: [0.1, 0.0],
-        dt: 1e-4,
+    assert!(FilmDeformation::new(vec![0.0, f64::NAN, 0.0]).is_err());
+}
+
+/// A time step with a deformation: the same uniform δ at the old level (the state's) and the
+/// new one (the solver's) makes h = (c + δ)(1 − ε'·n(θ)) at both, so the step from ε₀ to ε₁
+/// must be the rigid step of clearance c + δ from ε₀' to ε₁' (ε' = ε c/(c + δ)) — the squeeze
+/// term included — to the oracle's 1e-7 of p_max; the state it returns carries the δ it was
+/// solved with. A state without the deformation (rigid old level) gives another answer: the
+/// gap opening by δ within the step is a squeeze of its own.
+#[test]
+fn time_step_with_a_uniform_deformation_is_a_larger_clearance() {
+    let c = 50e-6;
+    let delta = 0.5 * c;
+    let (e0, e1) = ([0.5, -0.3], [0.53, -0.27]);
+    let dt = 2e-4;
+    let k = c / (c + delta);
+    let mut p = grooved(LinearSolver::SparseLu);
+    p.clearance = c + delta;
+    let mut rigid = ReynoldsSolver::new(p).unwrap();
+    let rigid_state = rigid.initial_state([e0[0] * k, e0[1] * k]);
+    let step = |eps: [f64; 2]| StepInput {
+        eccentricity_ratio: eps,
+        dt,
         conditions: conditions(2e5),
     };
-    assert!(matches!(
-        s.solve_step(&state, &step),
-        Err(ReynoldsError::Unsupported { .. })
-    ));
-    assert!(FilmDeformation::new(vec![0.0, f64::NAN, 0.0]).is_err());
+    let (want, _) = rigid
+        .solve_step(&rigid_state, &step([e1[0] * k, e1[1] * k]))
+        .unwrap();
+    let mut s = ReynoldsSolver::new(grooved(LinearSolver::SparseLu)).unwrap();
+    let d = FilmDeformation::new(vec![delta; 36]).unwrap();
+    s.set_deformation(Some(d.clone()));
+    let mut state = s.initial_state(e0);
+    state.deformation = Some(d.clone());
+    let (got, next) = s.solve_step(&state, &step(e1)).unwrap();
+    let p_max = want.max_pressure;
+    assert!(p_max > 1e6);
+    let worst = got
+        .pressure
+        .iter()
+        .zip(want.pressure.iter())
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-7 * p_max, "{worst} vs p_max {p_max}");
+    for i in 0..2 {
+        assert!((got.film_force[i] - want.film_force[i]).abs() < 1e-7 * want.load_capacity);
+    }
+    assert_eq!(next.deformation.as_ref(), Some(&d));
+    let opening = s.solve_step(&s.initial_state(e0), &step(e1)).unwrap().0;
+    let moved = (opening.film_force[0] - want.film_force[0])
+        .hypot(opening.film_force[1] - want.film_force[1]);
+    assert!(moved > 1e-3 * want.load_capacity, "{moved}");
 }
