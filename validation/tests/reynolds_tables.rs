@@ -249,3 +249,51 @@ fn butenschoen_rotation_table_high_eccentricity() {
     assert!(worst.1 < 0.5, "β {:.2}°", worst.1);
     assert!(worst.2 < 0.02, "Q {:.2} %", 100.0 * worst.2);
 }
+
+/// Below the tables' B/d = 1/3: B/d = 1/4 and 1/8 have no published rows here, so the default
+/// grid is checked against an independent answer of the same equations, the solution on 8× as
+/// many nodes around (960 × 31; the axial direction is resolved: 31 → 61 nodes moves So by
+/// 0.2 % at B/d 1/8, ε 0.99). Asserted where the default grid is meant to hold the product's
+/// tolerances (issue 11 item 6: So 2 %, β 0.5°, Q 2 %) and does: ε = 0.9 and 0.95, with the
+/// differences shrinking under refinement (120 → 240 → 480 around). Measured and printed, not
+/// asserted, at ε = 0.99: +2.0 % in So at B/d 1/8 and +1.1 % at 1/4 (2026-11-26) — the short
+/// film's pressure peak narrows like (1 − ε), 0.01 rad at ε 0.99, against Δθ = 0.052 rad; a θ grid
+/// clustered at the thinnest film is the cure (issue 11 item 6, not done).
+#[test]
+fn short_bearings_default_grid_against_eight_times_the_nodes() {
+    for bd in [0.25, 0.125] {
+        for eps in [0.9, 0.95, 0.99] {
+            let grids = [120, 240, 480, 960].map(|n_theta| GridParams { n_theta, n_z: 31 });
+            let v: Vec<(f64, f64, f64)> = grids
+                .iter()
+                .map(|&g| butenschoen_numbers(&solve(&mut solver(bd, g), eps), bd))
+                .collect();
+            let fine = v[3];
+            let rel = |a: f64, b: f64| (a - b) / b;
+            for (g, x) in grids.iter().zip(&v) {
+                eprintln!(
+                    "B/d={bd} ε={eps} {}×31: So {:.5} ({:+.2} % vs 960), β {:.3}° ({:+.3}°), Q {:.5} ({:+.3} %)",
+                    g.n_theta,
+                    x.0,
+                    100.0 * rel(x.0, fine.0),
+                    x.1,
+                    x.1 - fine.1,
+                    x.2,
+                    100.0 * rel(x.2, fine.2)
+                );
+            }
+            let d = v[0];
+            // β and Q hold everywhere, at ε = 0.99 too (−0.10°, −0.02 % measured).
+            assert!((d.1 - fine.1).abs() < 0.5 && rel(d.2, fine.2).abs() < 0.02);
+            if eps < 0.99 {
+                assert!(
+                    rel(d.0, fine.0).abs() < 0.02,
+                    "So {:+.2} %",
+                    100.0 * rel(d.0, fine.0)
+                );
+                // Refinement converges: the 240 grid is closer to the 960 one than the default.
+                assert!(rel(v[1].0, fine.0).abs() < rel(d.0, fine.0).abs());
+            }
+        }
+    }
+}
