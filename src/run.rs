@@ -440,6 +440,37 @@ fn solve_elastic(
     };
     let shaft = body("shaft", &bearing.shaft, &sol.shaft_displacement);
     let housing = body("housing", &bearing.housing, &sol.housing_displacement);
+    let series = elastic_series(&bearing, &sol, film_thickness, &shaft, &housing);
+    let scalars = elastic_scalars(c, &sol, &info, &rigid, &rigid_info, t0);
+    Ok(ElasticReport {
+        description: format!(
+            "deformable bearing: plane-strain finite elements of shaft (hole {} m, held radially) \
+             and square housing (half-width {} m, edges fixed), {} nodes around; film gap \
+             h = c - e cos + g, g = C p (compliance), Aitken-relaxed fixed point on g around the \
+             steady-load Newton (jbearing_solvers::elastic)",
+            problem.elastic.hole_radius,
+            match problem.elastic.housing {
+                jbearing_solvers::elastic::HousingShape::Square { half_width } => half_width,
+                jbearing_solvers::elastic::HousingShape::Circle { radius } => radius,
+            },
+            problem.elastic.n_theta
+        ),
+        scalars,
+        angle,
+        series,
+        bodies: vec![shaft, housing],
+    })
+}
+
+/// The surface series of a deformable-bearing answer: p̄, g, h, both bodies' radial
+/// displacements, and σ_r, σ_θ, σ_z, von Mises on the bore and on the journal.
+fn elastic_series(
+    bearing: &jbearing_solvers::elastic::ElasticBearing,
+    sol: &jbearing_solvers::elastic::ElasticSolution,
+    film_thickness: Vec<f64>,
+    shaft: &crate::output::BodyField,
+    housing: &crate::output::BodyField,
+) -> Vec<Series> {
     let mut series = vec![
         Series::new(
             "surface_pressure",
@@ -473,8 +504,8 @@ fn solve_elastic(
         ),
     ];
     for (prefix, where_, b) in [
-        ("bore", "housing bore", &housing),
-        ("journal", "journal surface", &shaft),
+        ("bore", "housing bore", housing),
+        ("journal", "journal surface", shaft),
     ] {
         let surface = if prefix == "bore" {
             &bearing.housing.mesh().surface
@@ -507,9 +538,23 @@ fn solve_elastic(
             surface.iter().map(|&k| b.von_mises(k)).collect(),
         ));
     }
+    series
+}
+
+/// The scalars of a deformable-bearing answer beside the rigid film's under the same load,
+/// and the coupled solve's statistics.
+fn elastic_scalars(
+    c: f64,
+    sol: &jbearing_solvers::elastic::ElasticSolution,
+    info: &jbearing_solvers::elastic::ElasticInfo,
+    rigid: &jbearing_solvers::reynolds::FilmSolution,
+    rigid_info: &jbearing_solvers::reynolds::SteadyLoadInfo,
+    t0: Instant,
+) -> Vec<Parameter> {
+    let eps = info.steady.eccentricity_ratio;
     let f = &sol.film;
     let e_rigid = rigid_info.eccentricity_ratio;
-    let scalars = vec![
+    vec![
         Parameter::number(
             "eccentricity_ratio_x",
             eps[0],
@@ -594,25 +639,7 @@ fn solve_elastic(
             "s",
             "wall time of the rigid and the coupled solve (meshing, factorization, compliance included)",
         ),
-    ];
-    Ok(ElasticReport {
-        description: format!(
-            "deformable bearing: plane-strain finite elements of shaft (hole {} m, held radially) \
-             and square housing (half-width {} m, edges fixed), {} nodes around; film gap \
-             h = c - e cos + g, g = C p (compliance), Aitken-relaxed fixed point on g around the \
-             steady-load Newton (jbearing_solvers::elastic)",
-            problem.elastic.hole_radius,
-            match problem.elastic.housing {
-                jbearing_solvers::elastic::HousingShape::Square { half_width } => half_width,
-                jbearing_solvers::elastic::HousingShape::Circle { radius } => radius,
-            },
-            problem.elastic.n_theta
-        ),
-        scalars,
-        angle,
-        series,
-        bodies: vec![shaft, housing],
-    })
+    ]
 }
 
 /// The inverse solver's settings from the case's `[solver]` and `[output]` tables.
@@ -775,8 +802,24 @@ impl InverseObserver for InverseAdapter<'_> {
     }
 }
 
-/// The inverse solution as the report's rigorous [`MethodResult`].
+/// The inverse solution as the report's rigorous [`MethodResult`]: its series on the shared
+/// crank grid, the field snapshots and the run statistics.
 pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> MethodResult {
+    let (time, crank_angle, series) = inverse_series(case, sol);
+    MethodResult {
+        period: Some(case.period()),
+        method: Method::Rigorous,
+        time,
+        crank_angle,
+        series,
+        fields: inverse_fields(case, sol),
+        solver_info: inverse_solver_info(&sol.info, film_name),
+    }
+}
+
+/// The final cycle's series (load, feed, orbit, h_min, p_max, flows, power, residual) on the
+/// grid both methods share, with that grid's times and crank angles.
+fn inverse_series(case: &Case, sol: &InverseSolution) -> (Vec<f64>, Vec<f64>, Vec<Series>) {
     let c = case.radial_clearance;
     let st = &sol.steps;
     // The solver's steps end at crank angles Δ, 2Δ, …, cycle; the file samples 0, Δ, …,
@@ -880,89 +923,88 @@ pub fn inverse_result(case: &Case, sol: &InverseSolution, film_name: &str) -> Me
             col(&|s| s.recirculated_flow),
         ));
     }
-    let info = &sol.info;
-    MethodResult {
-        period: Some(case.period()),
-        method: Method::Rigorous,
-        time,
-        crank_angle,
-        series,
-        fields: inverse_fields(case, sol),
-        solver_info: vec![
-            ("film_model".into(), ParameterValue::Text(film_name.into())),
-            ("cycles".into(), ParameterValue::Integer(info.cycles as i64)),
-            ("periodic".into(), ParameterValue::Flag(info.periodic)),
-            // After a single cycle there is no previous one to compare with (the solver's
-            // change is +∞): the attribute says so instead of holding a non-finite number.
-            (
-                "eccentricity_change".into(),
-                if info.eccentricity_change.is_finite() {
-                    ParameterValue::Number(info.eccentricity_change)
-                } else {
-                    ParameterValue::Text("not assessed: a single cycle was run".into())
-                },
+    (time, crank_angle, series)
+}
+
+/// The run statistics and the warning as typed attributes of the rigorous group.
+fn inverse_solver_info(
+    info: &jbearing_solvers::inverse::InverseInfo,
+    film_name: &str,
+) -> Vec<(String, ParameterValue)> {
+    vec![
+        ("film_model".into(), ParameterValue::Text(film_name.into())),
+        ("cycles".into(), ParameterValue::Integer(info.cycles as i64)),
+        ("periodic".into(), ParameterValue::Flag(info.periodic)),
+        // After a single cycle there is no previous one to compare with (the solver's
+        // change is +∞): the attribute says so instead of holding a non-finite number.
+        (
+            "eccentricity_change".into(),
+            if info.eccentricity_change.is_finite() {
+                ParameterValue::Number(info.eccentricity_change)
+            } else {
+                ParameterValue::Text("not assessed: a single cycle was run".into())
+            },
+        ),
+        (
+            "film_state_change".into(),
+            ParameterValue::Number(info.film_state_change),
+        ),
+        (
+            "steps_per_cycle".into(),
+            ParameterValue::Integer(info.steps_per_cycle as i64),
+        ),
+        (
+            "newton_iterations".into(),
+            ParameterValue::Integer(info.newton_iterations as i64),
+        ),
+        (
+            "film_evaluations".into(),
+            ParameterValue::Integer(info.film_evaluations as i64),
+        ),
+        (
+            "jacobian_evaluations".into(),
+            ParameterValue::Integer(info.jacobian_evaluations as i64),
+        ),
+        (
+            "sweep_iterations".into(),
+            ParameterValue::Integer(info.sweep_iterations as i64),
+        ),
+        // Steps accepted above the Newton tolerance (film-force jumps) and steps that
+        // needed halving: how much to trust the orbit between the tolerance and
+        // accept_tolerance.
+        (
+            "stalled_steps".into(),
+            ParameterValue::Integer(info.stalled_steps as i64),
+        ),
+        (
+            "max_stalled_residual".into(),
+            ParameterValue::Number(info.max_stalled_residual),
+        ),
+        (
+            "split_steps".into(),
+            ParameterValue::Integer(info.split_steps as i64),
+        ),
+        // The warning as a typed value: a code ("" or "not_periodic"; the numbers are the
+        // attributes above) and its message.
+        (
+            "warning".into(),
+            ParameterValue::Text(
+                match &info.warning {
+                    None => "",
+                    Some(InverseWarning::NotPeriodic { .. }) => "not_periodic",
+                }
+                .into(),
             ),
-            (
-                "film_state_change".into(),
-                ParameterValue::Number(info.film_state_change),
+        ),
+        (
+            "warning_message".into(),
+            ParameterValue::Text(
+                info.warning
+                    .as_ref()
+                    .map_or_else(String::new, ToString::to_string),
             ),
-            (
-                "steps_per_cycle".into(),
-                ParameterValue::Integer(info.steps_per_cycle as i64),
-            ),
-            (
-                "newton_iterations".into(),
-                ParameterValue::Integer(info.newton_iterations as i64),
-            ),
-            (
-                "film_evaluations".into(),
-                ParameterValue::Integer(info.film_evaluations as i64),
-            ),
-            (
-                "jacobian_evaluations".into(),
-                ParameterValue::Integer(info.jacobian_evaluations as i64),
-            ),
-            (
-                "sweep_iterations".into(),
-                ParameterValue::Integer(info.sweep_iterations as i64),
-            ),
-            // Steps accepted above the Newton tolerance (film-force jumps) and steps that
-            // needed halving: how much to trust the orbit between the tolerance and
-            // accept_tolerance.
-            (
-                "stalled_steps".into(),
-                ParameterValue::Integer(info.stalled_steps as i64),
-            ),
-            (
-                "max_stalled_residual".into(),
-                ParameterValue::Number(info.max_stalled_residual),
-            ),
-            (
-                "split_steps".into(),
-                ParameterValue::Integer(info.split_steps as i64),
-            ),
-            // The warning as a typed value: a code ("" or "not_periodic"; the numbers are the
-            // attributes above) and its message.
-            (
-                "warning".into(),
-                ParameterValue::Text(
-                    match &info.warning {
-                        None => "",
-                        Some(InverseWarning::NotPeriodic { .. }) => "not_periodic",
-                    }
-                    .into(),
-                ),
-            ),
-            (
-                "warning_message".into(),
-                ParameterValue::Text(
-                    info.warning
-                        .as_ref()
-                        .map_or_else(String::new, ToString::to_string),
-                ),
-            ),
-        ],
-    }
+        ),
+    ]
 }
 
 /// Field snapshots of the final cycle on the case's grid (θ_i = 2π i / n_θ, z_j from −L/2 to
