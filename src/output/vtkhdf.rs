@@ -107,24 +107,7 @@ pub fn write_surface(
             ]);
         }
     }
-    let offsets: Vec<i64> = (0..=n_cells as i64).map(|c| 4 * c).collect();
-    let types = vec![VTK_QUAD; n_cells];
-
-    let ds_i64 = |name: &str, data: &[i64]| -> h5::Result<()> {
-        root.new_dataset_builder().with_data(data).create(name)?;
-        Ok(())
-    };
-    ds_i64("NumberOfPoints", &[n_points as i64])?;
-    ds_i64("NumberOfCells", &[n_cells as i64])?;
-    ds_i64("NumberOfConnectivityIds", &[connectivity.len() as i64])?;
-    root.new_dataset_builder()
-        .with_data(points.view())
-        .create("Points")?;
-    ds_i64("Connectivity", &connectivity)?;
-    ds_i64("Offsets", &offsets)?;
-    root.new_dataset_builder()
-        .with_data(&types[..])
-        .create("Types")?;
+    write_quad_topology(&root, &points, &connectivity)?;
 
     let point_data = root.create_group("PointData")?;
     for fld in &f.fields {
@@ -244,23 +227,7 @@ pub fn write_bodies(file: &h5::File, bodies: &[super::BodyField]) -> h5::Result<
         }
         first += b.points.len();
     }
-    let offsets: Vec<i64> = (0..=n_cells as i64).map(|c| 4 * c).collect();
-    let types = vec![VTK_QUAD; n_cells];
-    let ds_i64 = |name: &str, data: &[i64]| -> h5::Result<()> {
-        root.new_dataset_builder().with_data(data).create(name)?;
-        Ok(())
-    };
-    ds_i64("NumberOfPoints", &[n_points as i64])?;
-    ds_i64("NumberOfCells", &[n_cells as i64])?;
-    ds_i64("NumberOfConnectivityIds", &[connectivity.len() as i64])?;
-    root.new_dataset_builder()
-        .with_data(points.view())
-        .create("Points")?;
-    ds_i64("Connectivity", &connectivity)?;
-    ds_i64("Offsets", &offsets)?;
-    root.new_dataset_builder()
-        .with_data(&types[..])
-        .create("Types")?;
+    write_quad_topology(&root, &points, &connectivity)?;
     let point_data = root.create_group("PointData")?;
     point_data
         .new_dataset_builder()
@@ -277,5 +244,34 @@ pub fn write_bodies(file: &h5::File, bodies: &[super::BodyField]) -> h5::Result<
         .new_dataset_builder()
         .with_data(&body_id[..])
         .create("body")?;
+    Ok(())
+}
+
+/// The UnstructuredGrid topology of `n_cells` = connectivity / 4 quads over `points` (one row
+/// per point, x y z): the counts, Points, Connectivity, Offsets and Types datasets of the
+/// VTKHDF layout (module docs).
+fn write_quad_topology(
+    root: &h5::Group,
+    points: &ndarray::Array2<f64>,
+    connectivity: &[i64],
+) -> h5::Result<()> {
+    let n_cells = connectivity.len() / 4;
+    let offsets: Vec<i64> = (0..=n_cells as i64).map(|c| 4 * c).collect();
+    let types = vec![VTK_QUAD; n_cells];
+    let ds_i64 = |name: &str, data: &[i64]| -> h5::Result<()> {
+        root.new_dataset_builder().with_data(data).create(name)?;
+        Ok(())
+    };
+    ds_i64("NumberOfPoints", &[points.nrows() as i64])?;
+    ds_i64("NumberOfCells", &[n_cells as i64])?;
+    ds_i64("NumberOfConnectivityIds", &[connectivity.len() as i64])?;
+    root.new_dataset_builder()
+        .with_data(points.view())
+        .create("Points")?;
+    ds_i64("Connectivity", connectivity)?;
+    ds_i64("Offsets", &offsets)?;
+    root.new_dataset_builder()
+        .with_data(&types[..])
+        .create("Types")?;
     Ok(())
 }
