@@ -47,7 +47,7 @@
 use super::ReynoldsError;
 use super::discretization::Stencil;
 use super::grid::{Grid, NodeKind};
-use super::multigrid::Multigrid;
+use super::multigrid::{Hierarchy, Multigrid};
 use crate::tridiagonal::{InterleavedFactors, LineWorkspace, cyclic_thomas_solve};
 
 /// The preconditioner of the flexible GMRES.
@@ -84,13 +84,21 @@ pub(crate) struct AdiWorkspace {
     circumferential_factors: InterleavedFactors,
     axial_factors: InterleavedFactors,
     line: LineWorkspace,
-    multigrid: Multigrid,
+    pub(crate) multigrid: Multigrid,
 }
+
+/// Krylov iterations after which a solve preconditioned by a multigrid hierarchy kept from a
+/// nearby matrix ([`Multigrid::setup`]) rebuilds it for its own matrix. A fresh hierarchy
+/// solves the default grid's frozen systems to 1e-10 in 6–12 iterations (the multigrid module
+/// docs); a kept one that has needed 12 no longer pays for the setup it saved.
+pub(crate) const STALE_REBUILD_ITERATIONS: usize = 12;
 
 /// Result of one frozen-switch iterative solve.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct KrylovInfo {
     pub iterations: usize,
+    /// max_k |r_k| of the returned x (what the stopping test saw).
+    pub residual: f64,
 }
 
 impl AdiWorkspace {
@@ -342,12 +350,16 @@ pub(crate) fn solve_krylov(
 ) -> Result<KrylovInfo, ReynoldsError> {
     let n = grid.len();
     ws.ensure(n, grid.n_theta);
+    // A multigrid hierarchy kept from a nearby matrix (`Hierarchy::Kept { stale: true }`).
+    let mut stale = false;
     match preconditioner {
         Preconditioner::Adi => {
             build_coarse(grid, st, ws);
             factor_lines(grid, st, ws)?;
         }
-        Preconditioner::Multigrid => ws.multigrid.setup(grid, st, switch)?,
+        Preconditioner::Multigrid => {
+            stale = ws.multigrid.setup(grid, st, switch)? == Hierarchy::Kept { stale: true };
+        }
     }
     let mut iterations = 0;
     loop {
@@ -364,7 +376,10 @@ pub(crate) fn solve_krylov(
         let target = tolerance * scale;
         if rmax <= target || scale == 0.0 {
             ws.r = r;
-            return Ok(KrylovInfo { iterations });
+            return Ok(KrylovInfo {
+                iterations,
+                residual: rmax,
+            });
         }
         if iterations >= max_iterations {
             ws.r = r;
@@ -386,6 +401,12 @@ pub(crate) fn solve_krylov(
         for jj in 0..RESTART {
             let mut zj = std::mem::take(&mut ws.z[jj]);
             let vj = std::mem::take(&mut ws.v[jj]);
+            if stale && iterations == STALE_REBUILD_ITERATIONS {
+                // Flexible GMRES keeps every preconditioned direction z_j, so the
+                // preconditioner may change between iterations: rebuild for this matrix.
+                ws.multigrid.rebuild(grid, st, switch)?;
+                stale = false;
+            }
             match preconditioner {
                 Preconditioner::Adi => precondition(grid, st, &vj, &mut zj, ws)?,
                 Preconditioner::Multigrid => ws.multigrid.apply(&vj, &mut zj)?,

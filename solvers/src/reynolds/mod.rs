@@ -1471,6 +1471,8 @@ impl ReynoldsSolver {
             ws,
             r: vec![0.0; grid.len()],
             first_residual: f64::NAN,
+            assembled_for: Vec::new(),
+            solved_residual: None,
         };
         let n_unknown = grid
             .kind
@@ -1549,6 +1551,14 @@ struct FrozenSwitch<'a> {
     r: Vec<f64>,
     /// The first step's residual, the reference of the steady solves' shift.
     first_residual: f64,
+    /// The switch the stencil holds A(g) of, unshifted (empty: none, or shifted). The Newton
+    /// loop assembles A(H(y)) for the residual at y and, after a block pivot or an unchanged
+    /// switch, solves the next step with that very matrix: assembled once, not twice.
+    assembled_for: Vec<f64>,
+    /// max|r| of the last Krylov solve's answer under the (unshifted) matrix of
+    /// `assembled_for`, which [`FrozenSwitch::residual`] at that answer and switch would
+    /// recompute.
+    solved_residual: Option<f64>,
 }
 
 impl FrozenSwitch<'_> {
@@ -1565,12 +1575,13 @@ impl FrozenSwitch<'_> {
     ) -> Result<(Vec<f64>, f64), ReynoldsError> {
         let (grid, speed) = (self.level.grid, self.level.speed);
         let (n, nz) = (grid.len(), grid.n_z);
-        discretization::assemble(&self.level, g, self.dirichlet, self.time, self.stencil);
+        self.assemble(g);
         let (rmax_now, scale) = self.stencil.residual(grid, psi, &mut self.r);
         if !self.first_residual.is_finite() {
             self.first_residual = rmax_now.max(f64::MIN_POSITIVE);
         }
         if matches!(self.time, TimeTerm::Steady) {
+            self.assembled_for.clear();
             let sigma = STEADY_SHIFT * (rmax_now / self.first_residual).min(1.0);
             for k in 0..n {
                 if grid.kind[k] == NodeKind::Unknown {
@@ -1596,8 +1607,12 @@ impl FrozenSwitch<'_> {
                     self.ws,
                 )?;
                 newton.linear_iterations += info.iterations;
+                self.solved_residual = (!self.assembled_for.is_empty()).then_some(info.residual);
             }
-            None => oracle::solve_lu(grid, self.stencil, &mut y)?,
+            None => {
+                self.solved_residual = None;
+                oracle::solve_lu(grid, self.stencil, &mut y)?;
+            }
         }
         if let Some(k) = y.iter().position(|x| !x.is_finite()) {
             return Err(ReynoldsError::NonFinite {
@@ -1610,10 +1625,26 @@ impl FrozenSwitch<'_> {
         Ok((y, scale))
     }
 
-    /// The nonlinear residual's max norm at `y` with switch `g`.
+    /// The nonlinear residual's max norm at `y`, the answer of the last [`FrozenSwitch::solve`],
+    /// with switch `g`: the Krylov solve's own final residual when g is the switch it solved
+    /// with (nothing switched), else A(g) y − b assembled anew.
     fn residual(&mut self, g: &[f64], y: &[f64]) -> f64 {
-        discretization::assemble(&self.level, g, self.dirichlet, self.time, self.stencil);
+        let solved = self.solved_residual.take();
+        if let Some(rmax) = solved.filter(|_| self.assembled_for == g) {
+            return rmax;
+        }
+        self.assemble(g);
         self.stencil.residual(self.level.grid, y, &mut self.r).0
+    }
+
+    /// The stencil ← A(g) (unshifted), unless it holds that already.
+    fn assemble(&mut self, g: &[f64]) {
+        if self.assembled_for != g {
+            self.solved_residual = None;
+            discretization::assemble(&self.level, g, self.dirichlet, self.time, self.stencil);
+            self.assembled_for.clear();
+            self.assembled_for.extend_from_slice(g);
+        }
     }
 }
 
