@@ -194,34 +194,49 @@ impl Stencil {
         let (nt, nz) = (grid.n_theta, grid.n_z);
         let mut rmax: f64 = 0.0;
         let mut scale: f64 = 0.0;
-        let dir = |k: usize| grid.kind[k] != NodeKind::Unknown;
+        // The end rows j = 0, n_z − 1 are Dirichlet (grid module): r = rhs − x there, which the
+        // five-point row below also gives (p = 1, neighbours 0), but it would reach past the
+        // ends. The rows j = 1 … n_z − 2 of each axial line are slices of one length m, so the
+        // loop has no branch and no bounds check: a Dirichlet row among them (groove, supply
+        // line) has p = 1 and zero neighbours, and weight 0 in the scale.
+        let m = nz - 2;
         for i in 0..nt {
             let iw = if i == 0 { nt - 1 } else { i - 1 };
             let ie = if i + 1 == nt { 0 } else { i + 1 };
             let (b, bw, be) = (i * nz, iw * nz, ie * nz);
-            for j in 0..nz {
-                let k = b + j;
-                if dir(k) {
-                    r[k] = self.rhs[k] - x[k];
-                    rmax = rmax.max(r[k].abs());
-                    continue;
-                }
-                let t = [
-                    self.w[k] * x[bw + j],
-                    self.e[k] * x[be + j],
-                    self.s[k] * x[k - 1],
-                    self.n[k] * x[k + 1],
-                ];
-                let v = self.rhs[k] - (self.p[k] * x[k] + t[0] + t[1] + t[2] + t[3]);
-                r[k] = v;
+            for k in [b, b + nz - 1] {
+                r[k] = self.rhs[k] - x[k];
+                rmax = rmax.max(r[k].abs());
+            }
+            fn span(v: &[f64], from: usize, m: usize) -> &[f64] {
+                &v[from..from + m]
+            }
+            let row = |v| span(v, b + 1, m);
+            let (p, w, e, s, n, rhs) = (
+                row(&self.p),
+                row(&self.w),
+                row(&self.e),
+                row(&self.s),
+                row(&self.n),
+                row(&self.rhs),
+            );
+            let (xp, xw, xe) = (row(x), &x[bw + 1..bw + 1 + m], &x[be + 1..be + 1 + m]);
+            let (xs, xn) = (&x[b..b + m], &x[b + 2..b + 2 + m]);
+            let u = row(&grid.unknown_weight);
+            let [dw, de, ds, dn] = &grid.dirichlet_neighbour;
+            let (dw, de, ds, dn) = (row(dw), row(de), row(ds), row(dn));
+            let rl = &mut r[b + 1..b + 1 + m];
+            for j in 0..m {
+                let t = [w[j] * xw[j], e[j] * xe[j], s[j] * xs[j], n[j] * xn[j]];
+                let v = rhs[j] - (p[j] * xp[j] + t[0] + t[1] + t[2] + t[3]);
+                rl[j] = v;
                 rmax = rmax.max(v.abs());
-                let mut sc = self.rhs[k].abs();
-                for (l, tl) in [bw + j, be + j, k - 1, k + 1].into_iter().zip(t) {
-                    if dir(l) {
-                        sc += tl.abs();
-                    }
-                }
-                scale = scale.max(sc);
+                let sc = rhs[j].abs()
+                    + dw[j] * t[0].abs()
+                    + de[j] * t[1].abs()
+                    + ds[j] * t[2].abs()
+                    + dn[j] * t[3].abs();
+                scale = scale.max(u[j] * sc);
             }
         }
         (rmax, scale)

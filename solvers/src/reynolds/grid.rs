@@ -61,6 +61,11 @@ pub(crate) struct Grid {
     pub kind: Vec<NodeKind>,
     /// Weight of node (i, j) in area integrals (midpoint rule): R Δθ Δz inside, 0 on the end rows.
     pub area_weight: Vec<f64>,
+    /// 1 on the unknown nodes, 0 on the Dirichlet ones; and, per unknown node, 1 where its
+    /// west / east / south / north neighbour is a Dirichlet node (else 0): the weights of the
+    /// flux scale in [`super::discretization::Stencil::residual`], set once the node kinds are.
+    pub unknown_weight: Vec<f64>,
+    pub dirichlet_neighbour: [Vec<f64>; 4],
 }
 
 impl Grid {
@@ -94,6 +99,8 @@ impl Grid {
             theta0,
             kind,
             area_weight,
+            unknown_weight: Vec::new(),
+            dirichlet_neighbour: Default::default(),
         };
         for (g, groove) in params.grooves.iter().enumerate() {
             grid.mark_groove(g, groove);
@@ -103,7 +110,39 @@ impl Grid {
                 grid.kind[j] = NodeKind::SupplyLine;
             }
         }
+        grid.set_residual_weights();
         Ok(grid)
+    }
+
+    /// [`Grid::unknown_weight`] and [`Grid::dirichlet_neighbour`] from the node kinds.
+    fn set_residual_weights(&mut self) {
+        let (nt, nz) = (self.n_theta, self.n_z);
+        let dirichlet = |k: usize| self.kind[k] != NodeKind::Unknown;
+        let mut unknown = vec![0.0; nt * nz];
+        let mut nbr: [Vec<f64>; 4] = std::array::from_fn(|_| vec![0.0; nt * nz]);
+        for i in 0..nt {
+            let iw = if i == 0 { nt - 1 } else { i - 1 };
+            let ie = if i + 1 == nt { 0 } else { i + 1 };
+            for j in 0..nz {
+                let k = i * nz + j;
+                if dirichlet(k) {
+                    continue;
+                }
+                unknown[k] = 1.0;
+                // Unknown nodes are interior in z (the end rows are Dirichlet), so j ± 1 exist.
+                let flags = [
+                    dirichlet(iw * nz + j),
+                    dirichlet(ie * nz + j),
+                    dirichlet(k - 1),
+                    dirichlet(k + 1),
+                ];
+                for (w, f) in nbr.iter_mut().zip(flags) {
+                    w[k] = if f { 1.0 } else { 0.0 };
+                }
+            }
+        }
+        self.unknown_weight = unknown;
+        self.dirichlet_neighbour = nbr;
     }
 
     #[inline]

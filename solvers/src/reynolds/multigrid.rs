@@ -231,30 +231,63 @@ impl Stencil9 {
             }
             yl[j] = bl[j] - s;
         }
-        let (c0, c1, c2, c3, c4, c5, c6, c7, c8) =
-            (c(0), c(1), c(2), c(3), c(4), c(5), c(6), c(7), c(8));
-        let (xw, xp, xe) = (xl[0], xl[1], xl[2]);
+        // Interior rows j = 1 … n_z − 2 as slices of one length m (row j at index j − 1; the
+        // neighbour j ∓ 1 at the slice shifted by one): no bounds checks in the loop, which
+        // LLVM vectorizes. Same operations in the same order as row by row.
+        if nz < 3 {
+            return;
+        }
+        let m = nz - 2;
+        fn inner(v: &[f64], m: usize) -> &[f64] {
+            &v[1..1 + m]
+        }
+        fn below(v: &[f64], m: usize) -> &[f64] {
+            &v[..m]
+        }
+        fn above(v: &[f64], m: usize) -> &[f64] {
+            &v[2..2 + m]
+        }
+        let (c0, c1, c2, c3, c4, c5, c6, c7, c8) = (
+            inner(c(0), m),
+            inner(c(1), m),
+            inner(c(2), m),
+            inner(c(3), m),
+            inner(c(4), m),
+            inner(c(5), m),
+            inner(c(6), m),
+            inner(c(7), m),
+            inner(c(8), m),
+        );
+        let (xw, xp, xe) = (inner(xl[0], m), inner(xl[1], m), inner(xl[2], m));
+        let (xp_s, xp_n) = (below(xl[1], m), above(xl[1], m));
+        let (bl, yl) = (&bl[1..1 + m], &mut yl[1..1 + m]);
         if self.five {
-            for j in 1..last {
+            for j in 0..m {
                 let s = c4[j] * xp[j]
                     + c1[j] * xw[j]
                     + c7[j] * xe[j]
-                    + c3[j] * xp[j - 1]
-                    + c5[j] * xp[j + 1];
+                    + c3[j] * xp_s[j]
+                    + c5[j] * xp_n[j];
                 yl[j] = bl[j] - s;
             }
             return;
         }
-        for j in 1..last {
+        let (xw_s, xw_n, xe_s, xe_n) = (
+            below(xl[0], m),
+            above(xl[0], m),
+            below(xl[2], m),
+            above(xl[2], m),
+        );
+        for j in 0..m {
             let s = c4[j] * xp[j]
                 + c1[j] * xw[j]
                 + c7[j] * xe[j]
-                + c3[j] * xp[j - 1]
-                + c5[j] * xp[j + 1]
-                + c0[j] * xw[j - 1]
-                + c2[j] * xw[j + 1]
-                + c6[j] * xe[j - 1]
-                + c8[j] * xe[j + 1];
+                + c3[j] * xp_s[j]
+                + c5[j] * xp_n[j]
+                + c0[j] * xw_s[j]
+                + c2[j] * xw_n[j]
+                + c6[j] * xe_s[j]
+                + c8[j] * xe_n[j];
             yl[j] = bl[j] - s;
         }
     }
