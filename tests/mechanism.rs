@@ -107,6 +107,11 @@ fn run_writes_the_slider_crank_files_with_the_solvers_numbers() {
         &col(&lub, &|i| lub.loads[i].crank_moment),
     );
     assert_same(
+        "lubricated rod_slider_torque",
+        &read(&f, "lubricated/rod_slider_torque"),
+        &col(&lub, &|i| lub.loads[i].rod_slider_torque),
+    );
+    assert_same(
         "eccentricity_y",
         &read(&f, "lubricated/eccentricity_y"),
         &col(&lub, &|i| lub.eccentricity[i][1]),

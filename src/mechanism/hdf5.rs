@@ -20,6 +20,7 @@
 //! │   │  joint_force_x/y/magnitude(time) [N]        rod–slider joint, force on the rod
 //! │   │  crank_pin_force_x/y, ground_pivot_force_x/y, guide_normal_force (time) [N]
 //! │   │  crank_moment(time) [N m]                   driving moment
+//! │   │  rod_slider_torque(time) [N m]              joint moment on the rod (friction)
 //! │   │  eccentricity_x/y(time) [m], eccentricity_ratio(time) [1]   journal orbit
 //! │   │  eccentricity_rate_x/y(time) [m s-1]
 //! │   │  min_film_thickness(time) [m], contact_weight(time) [1]
@@ -454,6 +455,14 @@ fn write_run(
     if !lubricated {
         return Ok(());
     }
+    series(
+        w,
+        "rod_slider_torque",
+        &col(&|i| l[i].rod_slider_torque),
+        "N m",
+        "rod–slider joint: moment on the rod about the journal centre (film friction torque and \
+         dry-contact friction moment where switched on, else 0; counter-clockwise)",
+    )?;
     let c = r
         .case
         .lubricated_joint()
