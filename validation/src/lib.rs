@@ -120,7 +120,10 @@ pub mod compressor_main {
 /// between `<!-- BEGIN generated: COMMAND -->` and `<!-- END generated -->`, and the command,
 /// run with `--write-docs`, replaces what lies between them with its fresh output
 /// ([`write_generated_block`](generated_docs::write_generated_block)). Everything outside the
-/// block — the prose around it, other commands' blocks — is left byte for byte.
+/// block — the prose around it, other commands' blocks — is left byte for byte. Validation tests
+/// write their own tables the same way when run with `JBEARING_WRITE_DOCS=1`
+/// ([`write_if_requested`](generated_docs::write_if_requested)), the block named by the
+/// test's command.
 pub mod generated_docs {
     use std::io::Write;
     use std::path::{Path, PathBuf};
@@ -241,12 +244,17 @@ pub mod generated_docs {
     /// Replaces the block of `command` in the page `path` by `content` and writes the page
     /// atomically: the new text goes to a hidden temporary file beside it, is flushed to disk and
     /// renamed over the page, so a reader sees the old page or the new one, never a mix; on any
-    /// error the page is unchanged and the temporary file removed.
+    /// error the page is unchanged and the temporary file removed. Writes of one process are
+    /// serialized (a process-wide lock) and the page is read inside the lock, so tests of one binary
+    /// running in parallel, each writing its own block of one page, all keep their block.
     pub fn write_generated_block(
         path: &Path,
         command: &str,
         content: &str,
     ) -> Result<(), GeneratedDocsError> {
+        let _guard = WRITE_LOCK
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
         let io = |source| GeneratedDocsError::Io {
             path: path.to_path_buf(),
             source,
@@ -273,6 +281,132 @@ pub mod generated_docs {
             return Err(io(e));
         }
         Ok(())
+    }
+
+    /// Held from reading a page to renaming its new version over it: without it, two threads
+    /// writing different blocks of one page would each write the page they read, and the later
+    /// rename would drop the earlier block (and they would share the temporary file's name).
+    static WRITE_LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+    /// The environment variable that makes validation tests write their tables into the docs:
+    /// `JBEARING_WRITE_DOCS=1 cargo test --release -p jbearing-validation --test NAME`. Unset (as
+    /// in CI), the tests only print and assert.
+    pub const WRITE_DOCS_VAR: &str = "JBEARING_WRITE_DOCS";
+
+    /// Whether [`WRITE_DOCS_VAR`] asks for the docs to be written: set to `1`.
+    pub fn write_docs_requested() -> bool {
+        std::env::var(WRITE_DOCS_VAR).is_ok_and(|v| v.trim() == "1")
+    }
+
+    /// The first line of a block a validation test writes: the date, the build and the command
+    /// (the marker that names it is an HTML comment, invisible on the rendered page) are what a
+    /// reader needs to judge whether the numbers below are still current and to reproduce them.
+    pub fn measured_line(command: &str) -> String {
+        let profile = if cfg!(debug_assertions) {
+            "dev build"
+        } else {
+            "release build"
+        };
+        format!(
+            "Measured {} ({profile}) by `{command}`.\n",
+            jiff::Timestamp::now().strftime("%Y-%m-%d %H:%M UTC")
+        )
+    }
+
+    /// For a validation test: when [`write_docs_requested`], puts `text` (after
+    /// [`measured_line`] and a blank line) into the block of `command` of `docs/PAGE`
+    /// ([`docs_page`]) and returns `Ok(true)`; otherwise does nothing and returns `Ok(false)`.
+    /// `command` is the exact command that reproduces the table.
+    pub fn write_if_requested(
+        page: &str,
+        command: &str,
+        text: &str,
+    ) -> Result<bool, GeneratedDocsError> {
+        write_if_requested_to(write_docs_requested(), &docs_page(page), command, text)
+    }
+
+    /// [`write_if_requested`] with the request and the page's path explicit (for tests).
+    pub fn write_if_requested_to(
+        requested: bool,
+        path: &Path,
+        command: &str,
+        text: &str,
+    ) -> Result<bool, GeneratedDocsError> {
+        if !requested {
+            return Ok(false);
+        }
+        let content = format!("{}\n{text}", measured_line(command));
+        write_generated_block(path, command, &content)?;
+        Ok(true)
+    }
+
+    /// "AMD EPYC, 2 logical CPUs" from /proc/cpuinfo: the machine line of a generated block.
+    pub fn machine() -> String {
+        let Ok(info) = std::fs::read_to_string("/proc/cpuinfo") else {
+            return "unknown machine (no /proc/cpuinfo)".to_string();
+        };
+        let model = info
+            .lines()
+            .find_map(|l| {
+                let (k, v) = l.split_once(':')?;
+                (k.trim() == "model name").then(|| v.trim().to_string())
+            })
+            .unwrap_or_else(|| "unknown CPU".to_string());
+        let cpus = info
+            .lines()
+            .filter(|l| l.split(':').next().is_some_and(|k| k.trim() == "processor"))
+            .count();
+        format!("{model}, {cpus} logical CPUs")
+    }
+
+    /// `x` with `digits` significant digits in fixed notation (never an exponent) and the
+    /// typographic minus of the docs' tables (−); `NaN` and infinities as Rust prints them.
+    pub fn sig(x: f64, digits: usize) -> String {
+        if !x.is_finite() {
+            return x.to_string();
+        }
+        if x == 0.0 {
+            return "0".into();
+        }
+        let magnitude = x.abs().log10().floor() as i64;
+        let decimals = (digits as i64 - 1 - magnitude).max(0) as usize;
+        let mut s = format!("{x:.decimals$}");
+        // Rounding may carry into a new digit (9.9996 → "10.000"): one decimal too many then.
+        let significant = s.replace(['-', '.'], "");
+        if decimals > 0 && significant.trim_start_matches('0').len() > digits {
+            s = format!("{x:.prec$}", prec = decimals - 1);
+        }
+        minus(&s)
+    }
+
+    /// `x` with `decimals` decimals and the typographic minus (−).
+    pub fn fixed(x: f64, decimals: usize) -> String {
+        minus(&format!("{x:.decimals$}"))
+    }
+
+    /// `x` with an explicit sign and `decimals` decimals, typographic minus; a value that rounds
+    /// to zero is written without a sign ("0.00", not "−0.00").
+    pub fn signed(x: f64, decimals: usize) -> String {
+        let s = format!("{x:+.decimals$}");
+        if s[1..].chars().all(|c| c == '0' || c == '.') {
+            return s[1..].to_string();
+        }
+        minus(&s)
+    }
+
+    /// `x` in scientific notation with `decimals` decimals ("−6e-8", "1.3e-13"), typographic
+    /// minus on the mantissa; exactly zero (of either sign) is "0".
+    pub fn sci(x: f64, decimals: usize) -> String {
+        if x == 0.0 {
+            return "0".into();
+        }
+        let s = format!("{:.decimals$e}", x.abs());
+        if x < 0.0 { format!("−{s}") } else { s }
+    }
+
+    /// `s` with every ASCII hyphen-minus replaced by the typographic minus (−) of the docs.
+    pub fn minus(s: &str) -> String {
+        s.replace('-', "−")
     }
 
     static REPORT: std::sync::Mutex<String> = std::sync::Mutex::new(String::new());
@@ -387,6 +521,92 @@ pub mod generated_docs {
                 write_generated_block(&missing, "cmd a", "x"),
                 Err(GeneratedDocsError::Io { .. })
             ));
+            std::fs::remove_dir_all(&dir).unwrap();
+        }
+
+        #[test]
+        fn parallel_writers_of_one_page_keep_every_block() {
+            let dir = std::env::temp_dir().join(format!(
+                "jbearing-generated-parallel-{}",
+                std::process::id()
+            ));
+            std::fs::create_dir_all(&dir).unwrap();
+            let page = dir.join("page.md");
+            let blocks: Vec<String> = (0..8)
+                .map(|i| {
+                    format!("<!-- BEGIN generated: cmd {i} -->\nold\n<!-- END generated -->\n")
+                })
+                .collect();
+            std::fs::write(&page, format!("# Page\n{}tail\n", blocks.concat())).unwrap();
+            // Eight threads, each rewriting its own block 20 times: without the lock the
+            // read-modify-rename of one thread overwrites another's block (or two threads
+            // share the temporary file), and some `new i` would be missing at the end.
+            std::thread::scope(|s| {
+                for i in 0..8 {
+                    let page = &page;
+                    s.spawn(move || {
+                        for round in 0..20 {
+                            let text = format!("| new {i} | round {round} |");
+                            write_generated_block(page, &format!("cmd {i}"), &text).unwrap();
+                        }
+                    });
+                }
+            });
+            let out = std::fs::read_to_string(&page).unwrap();
+            for i in 0..8 {
+                assert!(out.contains(&format!("| new {i} | round 19 |\n")), "{out}");
+            }
+            assert!(!out.contains("old") && out.ends_with("tail\n"), "{out}");
+            std::fs::remove_dir_all(&dir).unwrap();
+        }
+
+        #[test]
+        fn numbers_in_the_docs_style() {
+            assert_eq!(sig(3.752_284, 6), "3.75228");
+            assert_eq!(sig(-0.009_605_901, 6), "−0.00960590");
+            assert_eq!(sig(-0.311_768_4, 6), "−0.311768");
+            assert_eq!(sig(9.999_96, 4), "10.00");
+            assert_eq!(sig(0.099_996, 3), "0.100");
+            assert_eq!(sig(31.275, 6), "31.2750");
+            assert_eq!(sig(123_456.7, 3), "123457");
+            assert_eq!(sig(0.0, 3), "0");
+            assert_eq!(fixed(-6e-8, 1), "−0.0");
+            assert_eq!(fixed(2.345, 1), "2.3");
+            assert_eq!(signed(-0.004, 2), "0.00");
+            assert_eq!(signed(0.28, 2), "+0.28");
+            assert_eq!(signed(-10.3, 1), "−10.3");
+            assert_eq!(sci(-6.2e-8, 0), "−6e-8");
+            assert_eq!(sci(1.27e-13, 1), "1.3e-13");
+            assert_eq!(sci(-0.0, 0), "0");
+        }
+
+        #[test]
+        fn write_if_requested_writes_only_when_asked() {
+            let dir = std::env::temp_dir().join(format!(
+                "jbearing-generated-requested-{}",
+                std::process::id()
+            ));
+            std::fs::create_dir_all(&dir).unwrap();
+            let page = dir.join("page.md");
+            std::fs::write(&page, PAGE).unwrap();
+            assert!(!write_if_requested_to(false, &page, "cmd a", "| t |").unwrap());
+            assert_eq!(std::fs::read_to_string(&page).unwrap(), PAGE);
+            assert!(write_if_requested_to(true, &page, "cmd a", "| t |").unwrap());
+            let out = std::fs::read_to_string(&page).unwrap();
+            let block = out
+                .split("<!-- BEGIN generated: cmd a -->\n")
+                .nth(1)
+                .and_then(|r| r.split(END_MARKER).next())
+                .unwrap();
+            // The measured line, a blank line, the table; the other block untouched.
+            let mut lines = block.lines();
+            let first = lines.next().unwrap();
+            assert!(first.starts_with("Measured 20"), "{first}");
+            assert!(first.ends_with("build) by `cmd a`."), "{first}");
+            assert_eq!(lines.collect::<Vec<_>>(), ["", "| t |"]);
+            assert!(out.contains("old b\n"));
+            // Asked for a block the page lacks: an error, not a silent skip.
+            assert!(write_if_requested_to(true, &page, "cmd z", "x").is_err());
             std::fs::remove_dir_all(&dir).unwrap();
         }
     }

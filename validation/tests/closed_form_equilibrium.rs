@@ -14,7 +14,24 @@ use jbearing_solvers::closed_form::{
     ClosedFormModel, ClosedFormParams, EquilibriumSolution, JournalMotion, film_force,
     static_equilibrium,
 };
+use jbearing_validation::generated_docs::{fixed, sci, write_if_requested};
 use std::f64::consts::PI;
+use std::fmt::Write;
+
+/// The command that reproduces the equilibrium table of docs/validation.md.
+const COMMAND: &str = "cargo test --release -p jbearing-validation --test closed_form_equilibrium -- --nocapture flores_simple_bearing_equilibrium_of_every_model";
+
+/// The model's row label in docs/validation.md.
+fn label(model: ClosedFormModel) -> &'static str {
+    match model {
+        ClosedFormModel::LongSommerfeld => "long, Sommerfeld",
+        ClosedFormModel::LongGumbel => "long, Gumbel",
+        ClosedFormModel::ShortSommerfeld => "short, Sommerfeld",
+        ClosedFormModel::ShortGumbel => "short, Gumbel (fixed 0 … π)",
+        ClosedFormModel::ShortGumbelMovingFilm => "short, Gumbel (moving half film)",
+        ClosedFormModel::PinkusSternlicht => "Pinkus–Sternlicht",
+    }
+}
 
 const EQUILIBRIUM_FORCE: f64 = 31.275; // N, [Flores2009] §7 text on Fig. 11
 
@@ -41,19 +58,21 @@ fn flores_simple_bearing_equilibrium_of_every_model() {
     // printed: 30 + 0.13 · 9.81 = 31.2753).
     assert!((30.0 + 0.13 * 9.81 - EQUILIBRIUM_FORCE).abs() < 5e-4);
 
-    println!("| model | ε | attitude φ (°) | h_min (µm) | F_X (N) | F_Y (N) |");
-    println!("|---|---|---|---|---|---|");
+    let mut table = String::from(
+        "| model | ε | attitude φ (°) | h_min (µm) | F_X (N) | F_Y (N) |\n|---|---|---|---|---|---|\n",
+    );
     let mut sol = std::collections::HashMap::new();
     for model in ClosedFormModel::ALL {
         let s = solve(model);
-        println!(
-            "| {} | {:.4} | {:.2} | {:.1} | {:.1e} | {:.4} |",
-            model.name(),
-            s.eccentricity_ratio,
-            s.attitude_angle.to_degrees(),
-            s.min_film_thickness * 1e6,
-            s.film_force[0],
-            s.film_force[1]
+        let _ = writeln!(
+            table,
+            "| {} | {} | {} | {} | {} | {} |",
+            label(model),
+            fixed(s.eccentricity_ratio, 4),
+            fixed(s.attitude_angle.to_degrees(), 2),
+            fixed(s.min_film_thickness * 1e6, 1),
+            sci(s.film_force[0], 0),
+            fixed(s.film_force[1], 4)
         );
         // Figs. 10–11: F_X → 0, F_Y → 31.275 N (bisection to 1e-15 in ε: balance to ~1e-9).
         assert!(
@@ -94,6 +113,59 @@ fn flores_simple_bearing_equilibrium_of_every_model() {
     assert!(sol[&ShortSommerfeld].eccentricity_ratio < sol[&LongSommerfeld].eccentricity_ratio);
     assert!(sol[&LongSommerfeld].eccentricity_ratio < sol[&LongGumbel].eccentricity_ratio);
     assert!(sol[&ShortSommerfeld].eccentricity_ratio < sol[&ShortGumbel].eccentricity_ratio);
+    print!("{table}");
+    write_if_requested("validation.md", COMMAND, &table).expect("docs/validation.md block");
+}
+
+/// The command that reproduces the CLI's table of docs/results.md.
+const CLI_COMMAND: &str = "cargo test --release -p jbearing-validation --test closed_form_equilibrium -- --nocapture cli_closed_form_table_of_the_flores_case";
+
+/// `jbearing closed-form cases/flores2009_simple_bearing.toml` computes its table with
+/// `jbearing::closed_form_report::table` from the case file; this test calls the same function
+/// on the same file, checks it against the equilibria above (the case file must encode Table 1
+/// of [Flores2009], the application must put the same models in equilibrium under the same load)
+/// and writes the table of docs/results.md.
+#[test]
+fn cli_closed_form_table_of_the_flores_case() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../cases/flores2009_simple_bearing.toml");
+    let case = jbearing::case::Case::from_file(&path).expect("the shipped case reads");
+    let t = jbearing::closed_form_report::table(&case, &ClosedFormModel::ALL);
+    assert_eq!(t.rows.len(), ClosedFormModel::ALL.len());
+    let mut table = String::from(
+        "| model | ε | φ (°) | h_min (µm) | \\|F + W\\| (N) |\n|---|---|---|---|---|\n",
+    );
+    for (model, row) in ClosedFormModel::ALL.into_iter().zip(&t.rows) {
+        assert_eq!(
+            (row.model.as_str(), row.status.as_str()),
+            (model.name(), "ok")
+        );
+        // Same bearing, load and speed as `solve` above: the same equilibrium, to the bisection's
+        // tolerance (1e-15 in ε) and the load's.
+        let s = solve(model);
+        assert!(
+            (row.eccentricity_ratio - s.eccentricity_ratio).abs() < 1e-9,
+            "{model:?}: CLI ε {} against {}",
+            row.eccentricity_ratio,
+            s.eccentricity_ratio
+        );
+        assert!(
+            (row.attitude_angle - s.attitude_angle).abs() < 1e-8,
+            "{model:?}"
+        );
+        assert!(row.force_residual < 1e-8 * EQUILIBRIUM_FORCE, "{model:?}");
+        let _ = writeln!(
+            table,
+            "| {} | {} | {} | {} | {} |",
+            row.model,
+            fixed(row.eccentricity_ratio, 4),
+            fixed(row.attitude_angle.to_degrees(), 2),
+            fixed(row.min_film_thickness * 1e6, 2),
+            sci(row.force_residual, 1),
+        );
+    }
+    print!("{table}");
+    write_if_requested("results.md", CLI_COMMAND, &table).expect("docs/results.md block");
 }
 
 /// Integrate m ẍ = F(x, ẋ) + W from the centre at rest (classical RK4, fixed step); returns the

@@ -16,7 +16,19 @@ use jbearing_solvers::reynolds::{
     GridParams, Groove, OperatingConditions, ReynoldsParams, ReynoldsSolver, SupplyModel,
 };
 use jbearing_solvers::ritz::{RitzParams, solve_ritz};
+use jbearing_validation::generated_docs::{fixed, sci, sig, signed, write_if_requested};
 use std::f64::consts::PI;
+use std::fmt::Write;
+
+/// The command that reproduces the block of docs/validation.md written by the test `name`.
+fn command(name: &str) -> String {
+    format!(
+        "cargo test --release -p jbearing-validation --test closed_form_vs_reynolds -- --nocapture {name}"
+    )
+}
+
+/// The header of the two limit tables of docs/validation.md.
+const LIMIT_HEADER: &str = "| limit | case | FD vs closed form |\n|---|---|---|\n";
 
 const R: f64 = 0.02;
 const C: f64 = 40e-6;
@@ -42,8 +54,10 @@ fn closed(l: f64) -> ClosedFormParams {
 #[test]
 fn short_bearing_gumbel_is_the_limit_of_the_fd_film_as_l_over_d_goes_to_zero() {
     let omega = 100.0;
+    let mut table = String::from(LIMIT_HEADER);
     for eps in [0.3, 0.7] {
         let mut errs = Vec::new();
+        let mut measured = Vec::new();
         for ld in [0.5, 0.25, 0.125, 0.0625] {
             let l = ld * 2.0 * R;
             let mut p = ReynoldsParams::plain(R, l, C, MU);
@@ -71,7 +85,17 @@ fn short_bearing_gumbel_is_the_limit_of_the_fd_film_as_l_over_d_goes_to_zero() {
                 100.0 * err
             );
             errs.push((err.abs(), dang.abs()));
+            measured.push((100.0 * err, dang));
         }
+        let joined = |f: &dyn Fn(&(f64, f64)) -> String| {
+            measured.iter().map(f).collect::<Vec<_>>().join(" / ")
+        };
+        let _ = writeln!(
+            table,
+            "| short bearing, Gumbel vs JFO rupture, L/D → 0 (180 × 22) | ε = {eps}, L/D = 0.5 / 0.25 / 0.125 / 0.0625 | force magnitude {} %, direction {}° |",
+            joined(&|e| signed(e.0, 2)),
+            joined(&|e| signed(e.1, 2)),
+        );
         // The short-bearing theory drops the circumferential pressure flow, an O((L/D)²)
         // effect: the error must shrink by ≳ 2.5× per halving of L/D (4× asymptotically, less
         // where the grid error of ~0.1 % starts to show) and be below 1 % at L/D = 1/16.
@@ -80,6 +104,9 @@ fn short_bearing_gumbel_is_the_limit_of_the_fd_film_as_l_over_d_goes_to_zero() {
         }
         assert!(errs[3].0 < 0.01 && errs[3].1 < 0.1, "ε {eps}: {errs:?}");
     }
+    print!("{table}");
+    let name = "short_bearing_gumbel_is_the_limit_of_the_fd_film_as_l_over_d_goes_to_zero";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }
 
 #[test]
@@ -141,19 +168,38 @@ fn long_bearing_sommerfeld_is_the_limit_of_the_full_fd_film_as_l_over_d_grows() 
     }
     assert!((1.0 - errs[2].1).abs() < 0.05, "{errs:?}");
     assert!(errs[1].0 < 0.02 && errs[2].0 < 0.02, "{errs:?}");
+    let mut table = String::from(LIMIT_HEADER);
+    let _ = writeln!(
+        table,
+        "| long bearing, Sommerfeld vs full film (cavitation suppressed), L/D → ∞ (120 × 42) | ε = {eps}, L/D = 1 / 4 / 16 | total force ratio {}; mid-plane pressure vs eq. 5: {} % of p_max |",
+        errs.iter()
+            .map(|e| fixed(e.1, 3))
+            .collect::<Vec<_>>()
+            .join(" / "),
+        errs.iter()
+            .map(|e| sig(100.0 * e.0, 2))
+            .collect::<Vec<_>>()
+            .join(" / "),
+    );
+    print!("{table}");
+    let name = "long_bearing_sommerfeld_is_the_limit_of_the_full_fd_film_as_l_over_d_grows";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }
 
 #[test]
 fn ritz_pressure_against_fd_on_the_same_half_film() {
     let omega = 50.0;
     let p_line = 2e7; // film edges and ends at p_line, far above p_cav: no cavitation anywhere
-    // (ε, λ, bound on max |Δp|/p_max): the bounds are the measured differences (7.5, 6.9, 33.9,
-    // 1.5, 30.0 %) with margin — the statement of how far eq. 14 is from the exact film.
+    // (ε, λ, bound on max |Δp|/p_max): the bounds are the measured differences (1.5, 7.5, 6.9,
+    // 33.9, 30.0 %) with margin — the statement of how far eq. 14 is from the exact film.
+    let mut table = String::from(
+        "| ε | λ = r/l | max abs(p_Ritz − p_FD) / p_max | ∫p, Ritz vs FD | work ∫ε sin θ P, Ritz/FD |\n|---|---|---|---|---|\n",
+    );
     for (eps, lambda, bound) in [
+        (0.3, 1.0, 0.03),
         (0.3, 0.25, 0.10),
         (0.5, 0.5, 0.10),
         (0.7, 1.0, 0.40),
-        (0.3, 1.0, 0.03),
         (0.7, 0.25, 0.40),
     ] {
         let l = R / lambda;
@@ -211,12 +257,22 @@ fn ritz_pressure_against_fd_on_the_same_half_film() {
         );
         let work = work_ritz / work_fd;
         println!("   work ratio Ritz/FD {work:.4}");
+        let _ = writeln!(
+            table,
+            "| {eps} | {lambda} | {} % | {} % | {} |",
+            fixed(100.0 * dmax / pmax, 1),
+            signed(100.0 * dload, 1),
+            fixed(work, 3)
+        );
         // Rayleigh–Ritz bound, up to the FD grid error (~0.5 %).
         assert!(work < 1.005, "ε {eps} λ {lambda}: {work}");
         // The 4-term sine series and the parabolic axial profile: good at small ε and short
         // bearings (λ = 1), poor at ε = 0.7 and for the flat axial profile of L/D = 2 (λ = 0.25).
         assert!(dmax / pmax < bound, "ε {eps} λ {lambda}: {}", dmax / pmax);
     }
+    print!("{table}");
+    let name = "ritz_pressure_against_fd_on_the_same_half_film";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }
 
 #[test]
@@ -241,12 +297,16 @@ fn seed_004_bearing_fd_equilibrium_beside_the_closed_forms() {
     let e = info.eccentricity_ratio;
     let eps = e[0].hypot(e[1]);
     let att = (e[1].atan2(e[0]) - load[1].atan2(load[0])).to_degrees();
-    println!(
-        "| finite difference (120 × 31, JFO, supply line at h_max) | {eps:.4} | {att:.2} | {:.1} | {:.1e} | {:.4} |",
-        fd.min_film_thickness * 1e6,
-        fd.film_force[0],
-        fd.film_force[1]
+    let table = format!(
+        "| model | ε | attitude φ (°) | h_min (µm) | F_X (N) | F_Y (N) |\n|---|---|---|---|---|---|\n\
+         | finite difference (120 × 31, JFO, supply line at h_max) | {} | {} | {} | {} | {} |\n",
+        fixed(eps, 4),
+        fixed(att, 2),
+        fixed(fd.min_film_thickness * 1e6, 1),
+        sci(fd.film_force[0], 0),
+        fixed(fd.film_force[1], 4)
     );
+    print!("{table}");
     // The load is carried (Newton to 1e-8 |W|).
     assert!(fd.film_force[0].abs() < 1e-6 * 31.275);
     assert!((fd.film_force[1] - 31.275).abs() < 1e-6 * 31.275);
@@ -261,4 +321,6 @@ fn seed_004_bearing_fd_equilibrium_beside_the_closed_forms() {
     );
     assert!(eps > gl.eccentricity_ratio);
     assert!(att > 0.0 && att < gl.attitude_angle.to_degrees());
+    let name = "seed_004_bearing_fd_equilibrium_beside_the_closed_forms";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }

@@ -17,7 +17,22 @@ use jbearing_solvers::inverse::{
 use jbearing_solvers::load::{ConstantLoad, FnLoad, OperatingHistory, RotatingLoad};
 use jbearing_solvers::reynolds::{OperatingConditions, ReynoldsParams, ReynoldsSolver, TimeScheme};
 use jbearing_validation::compressor_main::{FEED, OMEGA, pulse_load, reynolds_params};
+use jbearing_validation::generated_docs::{fixed, sci, write_if_requested};
 use std::f64::consts::{PI, TAU};
+
+/// Writes the one-row table `| test | grid, step | reference | result |` of the test `name`
+/// into its block of docs/validation.md (and prints it).
+fn write_row(name: &str, cells: [&str; 4]) {
+    let table = format!(
+        "| test | grid, step | reference | result |\n|---|---|---|---|\n| {} |\n",
+        cells.join(" | ")
+    );
+    print!("{table}");
+    let command = format!(
+        "cargo test --release -p jbearing-validation --test inverse_reynolds -- --nocapture {name}"
+    );
+    write_if_requested("validation.md", &command, &table).expect("docs block");
+}
 
 fn params(scheme: TimeScheme) -> ReynoldsParams {
     params_on(scheme, 48, 13)
@@ -78,10 +93,24 @@ fn constant_load_gives_the_steady_load_solution() {
     let da = (last.attitude_angle - sol.attitude_angle).abs();
     println!("constant load: |Δε| {de:.2e}, |Δ attitude| {da:.2e} rad against the steady solve");
     assert!(da < 1e-3);
+    write_row(
+        "constant_load_gives_the_steady_load_solution",
+        [
+            "constant load 3 kN",
+            "120 × 31, 4°",
+            "`solve_steady_load` of the same grid",
+            &format!(
+                "\\|Δε\\| {}, \\|Δ attitude\\| {} rad (asked 1e-3)",
+                sci(de, 1),
+                sci(da, 1)
+            ),
+        ],
+    );
 }
 
 /// Over a periodic cycle the film content returns to its start: mean supply = mean leakage.
-fn supply_equals_leakage_on(n_theta: usize, n_z: usize) {
+/// Returns the cycles to periodic and the relative difference.
+fn supply_equals_leakage_on(n_theta: usize, n_z: usize) -> (usize, f64) {
     let mut film = ReynoldsFilm::new(params_on(TimeScheme::default(), n_theta, n_z)).unwrap();
     let load = history(FnLoad {
         period: TAU / OMEGA,
@@ -104,13 +133,26 @@ fn supply_equals_leakage_on(n_theta: usize, n_z: usize) {
         s.mean_total_supply_flow,
         s.mean_total_side_leakage
     );
+    (inv.info.cycles, rel)
 }
 
 /// 60 × 15, ~6 s (measured 2026-11-23: 5 cycles, 7.0e-5 relative; stalled steps accepted at
 /// up to `accept_tolerance` leave the cycle's balance at this level).
 #[test]
 fn mean_supply_equals_mean_side_leakage_over_a_periodic_cycle() {
-    supply_equals_leakage_on(60, 15);
+    let (cycles, rel) = supply_equals_leakage_on(60, 15);
+    write_row(
+        "mean_supply_equals_mean_side_leakage_over_a_periodic_cycle",
+        [
+            "mean supply = mean side leakage over the periodic cycle",
+            "60 × 15, 4° (120 × 31 as an ignored slow twin)",
+            "mass conservation",
+            &format!(
+                "{} relative after {cycles} cycles (asked 1e-3)",
+                sci(rel, 1)
+            ),
+        ],
+    );
 }
 
 /// The default grid (measured 2026-11-23: 5 cycles, 4.9e-5 relative, ~50 s in the test profile).
@@ -141,6 +183,18 @@ fn half_speed_whirl_load_collapses() {
         }) => {
             println!("whirl: collapse at |ε| {eccentricity:.4}, residual {residual:.2e}");
             assert!(eccentricity.is_finite() && residual.is_finite());
+            write_row(
+                "half_speed_whirl_load_collapses",
+                [
+                    "half-speed whirl load 3 kN",
+                    "48 × 13, 4°",
+                    "must not be carried",
+                    &format!(
+                        "`Collapse` at the 1 µm floor, \\|ε\\| = {}",
+                        fixed(eccentricity, 4)
+                    ),
+                ],
+            );
         }
         other => panic!("expected collapse, got {other:?}"),
     }
@@ -198,5 +252,31 @@ fn halving_the_default_step_changes_h_min_and_power_loss_by_less_than_one_percen
     assert!(
         dh < dh2 && dp < dp2,
         "no convergence with the step: h_min changes {dh2:.2e} then {dh:.2e}, power {dp2:.2e} then {dp:.2e}"
+    );
+    write_row(
+        "halving_the_default_step_changes_h_min_and_power_loss_by_less_than_one_percent",
+        [
+            "step halving at the default step",
+            &format!(
+                "48 × 13, {} / {} / {}°",
+                2.0 * default_step,
+                default_step,
+                0.5 * default_step
+            ),
+            "changes < 1 % and shrinking",
+            &format!(
+                "h_min {} / {} / {} µm, mean power {} / {} / {} W: {}° → {}° changes {} / {}",
+                fixed(1e6 * coarse.0, 4),
+                fixed(1e6 * default.0, 4),
+                fixed(1e6 * half.0, 4),
+                fixed(coarse.1, 3),
+                fixed(default.1, 3),
+                fixed(half.1, 3),
+                default_step,
+                0.5 * default_step,
+                sci(dh, 1),
+                sci(dp, 1)
+            ),
+        ],
     );
 }

@@ -19,7 +19,22 @@ use jbearing_solvers::mobility::{
 };
 use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
 use jbearing_validation::flores2006;
+use jbearing_validation::generated_docs::{fixed, sig, write_if_requested};
 use std::time::Instant;
+
+/// The command that reproduces the block of docs/validation.md written by the test `name`.
+fn command(name: &str) -> String {
+    format!(
+        "cargo test --release -p jbearing-validation --test mobility_finite_length -- --nocapture {name}"
+    )
+}
+
+/// Writes the one-row table `| check | result |` of the test `name` (and prints it).
+fn write_row(name: &str, check: &str, result: &str) {
+    let table = format!("| check | result |\n|---|---|\n| {check} | {result} |\n");
+    print!("{table}");
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
+}
 
 fn film(ld: f64, n: usize, m: usize) -> ReynoldsSqueezeFilm {
     ReynoldsSqueezeFilm::new(SqueezeFilmParams {
@@ -48,6 +63,7 @@ fn small_length_to_diameter_approaches_the_short_bearing() {
     // like (L/D)²: a factor 4 per halving in the limit. Cavity edges and the finite θ grid take
     // some of that; we ask for at least 2.5 per halving and < 1 % at L/D = 1/40.
     let mut last: Option<f64> = None;
+    let mut gaps = Vec::new();
     for ld in [0.1, 0.05, 0.025] {
         let f = ReynoldsSqueezeFilm::new(SqueezeFilmParams::new(ld)).expect("grid");
         let worst = STATES
@@ -64,8 +80,14 @@ fn small_length_to_diameter_approaches_the_short_bearing() {
             assert!(prev / worst > 2.5, "gap fell only {prev:.3e} → {worst:.3e}");
         }
         last = Some(worst);
+        gaps.push(format!("{} %", sig(100.0 * worst, 2)));
     }
     assert!(last.unwrap() < 0.01);
+    write_row(
+        "small_length_to_diameter_approaches_the_short_bearing",
+        "gap to the short-bearing closed form at L/D = 0.1, 0.05, 0.025 (worst of 4 states)",
+        &format!("{} — falls like (L/D)²", gaps.join(", ")),
+    );
 }
 
 #[test]
@@ -79,6 +101,7 @@ fn default_grid_is_converged_at_second_order() {
     assert_eq!(default.params().circumferential_nodes, 144);
     assert_eq!(default.params().axial_cells, 12);
     let fine = film(ld, 288, 24);
+    let (mut worst, mut orders) = (0.0f64, (f64::INFINITY, 0.0f64));
     for (eps, u) in STATES.into_iter().chain([([0.95, 0.0], [1.0, 0.0])]) {
         let z1 = coarse.squeeze_load(eps, u).unwrap();
         let z2 = default.squeeze_load(eps, u).unwrap();
@@ -88,7 +111,19 @@ fn default_grid_is_converged_at_second_order() {
         eprintln!("ε {eps:?} û {u:?}: Z = {z3:?}, default grid off by {err:.2e}, order {order:.2}");
         assert!(err < 5e-3, "default grid {err:.2e} off the fine grid");
         assert!((1.6..2.4).contains(&order), "observed order {order:.2}");
+        worst = worst.max(err);
+        orders = (orders.0.min(order), orders.1.max(order));
     }
+    write_row(
+        "default_grid_is_converged_at_second_order",
+        "default film grid 144 × 12 vs 288 × 24, L/D = 1/2, ε ≤ 0.95",
+        &format!(
+            "≤ {} %, observed order {}–{}",
+            fixed(100.0 * worst, 2),
+            fixed(orders.0, 2),
+            fixed(orders.1, 2)
+        ),
+    );
 }
 
 #[test]
@@ -109,6 +144,7 @@ fn map_at_half_length_reproduces_direct_squeeze_solves() {
     )
     .expect("map");
     eprintln!("map 15 × 13 built in {:.2} s", t.elapsed().as_secs_f64());
+    let (mut worst_m, mut worst_d) = (0.0f64, 0.0f64);
     for (e, psi_deg) in [(0.25, 37.0), (0.55, 100.0), (0.75, 12.0), (0.85, 161.0)] {
         let psi = f64::to_radians(psi_deg);
         let (zeta, kappa) = (e * psi.cos(), e * psi.sin());
@@ -124,7 +160,18 @@ fn map_at_half_length_reproduces_direct_squeeze_solves() {
         // ψ → π; 1.1e-3 and 0.26° were seen at (0.85, 161°). 5e-3 / 0.5° leave room for the
         // cavity-edge noise of the 96 × 8 film, not for a wrong node inversion (≥ 10 %).
         assert!(magnitude.abs() < 5e-3 && direction.abs() < 0.5);
+        worst_m = worst_m.max(magnitude.abs());
+        worst_d = worst_d.max(direction.abs());
     }
+    write_row(
+        "map_at_half_length_reproduces_direct_squeeze_solves",
+        "L/D = 1/2 map (15 × 13 nodes) vs direct solves between nodes",
+        &format!(
+            "\\|Z\\|\\|M\\| − 1 ≤ {:.1e}, load direction ≤ {}°",
+            worst_m,
+            fixed(worst_d, 2)
+        ),
+    );
 }
 
 #[test]
@@ -170,4 +217,13 @@ fn flores_example_with_the_finite_length_map_runs_thinner_than_the_short_bearing
     // near the wall, roughly as its 2/5 power).
     assert!(hf < hb, "finite {hf:e} vs short {hb:e}");
     assert!(hf > 0.5 * hb && hf > 2.5e-6);
+    write_row(
+        "flores_example_with_the_finite_length_map_runs_thinner_than_the_short_bearing",
+        "Flores example (L/D = 0.4), cycle-minimum h_min",
+        &format!(
+            "finite-length map {} µm vs Booker {} µm",
+            fixed(hf * 1e6, 2),
+            fixed(hb * 1e6, 2)
+        ),
+    );
 }

@@ -22,8 +22,13 @@ use jbearing_solvers::mobility::{
     BookerShortBearing, ExactShortBearing, LoadInterpolation, MobilityParams, OrbitInfo,
     OrbitParams, TabulatedLoad, solve_orbit,
 };
+use jbearing_validation::generated_docs::{fixed, write_if_requested};
 use std::f64::consts::TAU;
+use std::fmt::Write;
 use std::path::Path;
+
+/// The command that reproduces the periodic-cycle table of docs/results.md.
+const COMMAND: &str = "cargo test --release -p jbearing-validation --test mobility_flores -- --nocapture flores_example_keeps_a_safe_film_and_becomes_periodic_quickly";
 
 const SAFE_FILM: f64 = 2.5e-6;
 
@@ -107,6 +112,41 @@ fn print_table(name: &str, o: &OrbitInfo) {
     }
 }
 
+/// The periodic cycle at the crank angles of docs/results.md, as its table (φ is the paper's
+/// attitude angle, from −Y counter-clockwise; W positive along −Y), with the cycle's summary.
+fn docs_table(o: &OrbitInfo) -> String {
+    let mut t = String::from(
+        "| crank ° | W (kN) | ε | φ (°) | h_min (µm) | p_max (MPa) | Q (cm³/s) | P (W) |\n\
+         |---:|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for crank in [
+        0.0, 90.0, 180.0, 210.0, 270.0, 360.0, 450.0, 540.0, 630.0, 690.0,
+    ] {
+        let i = (0..o.time.len())
+            .min_by(|&a, &b| {
+                (o.crank_angle_deg[a] - crank)
+                    .abs()
+                    .total_cmp(&(o.crank_angle_deg[b] - crank).abs())
+            })
+            .expect("a sampled cycle");
+        let e = o.eccentricity[i];
+        let perf = &o.performance[i];
+        let _ = writeln!(
+            t,
+            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            fixed(o.crank_angle_deg[i], 0),
+            fixed(-o.load[i][1] * 1e-3, 2),
+            fixed(e[0].hypot(e[1]), 3),
+            fixed(e[0].atan2(-e[1]).to_degrees(), 1),
+            fixed(perf.min_film_thickness * 1e6, 2),
+            fixed(perf.peak_pressure * 1e-6, 2),
+            fixed(perf.side_flow * 1e6, 2),
+            fixed(perf.power_loss, 1),
+        );
+    }
+    t
+}
+
 #[test]
 fn flores_example_keeps_a_safe_film_and_becomes_periodic_quickly() {
     let load = load();
@@ -152,6 +192,9 @@ fn flores_example_keeps_a_safe_film_and_becomes_periodic_quickly() {
         "periodic only after {} cycles",
         orbit.cycles
     );
+    let table = docs_table(&orbit);
+    print!("{table}");
+    write_if_requested("results.md", COMMAND, &table).expect("docs/results.md block");
 }
 
 #[test]

@@ -10,6 +10,7 @@ use std::f64::consts::PI;
 use jbearing_solvers::reynolds::{
     FilmSolution, GridParams, OperatingConditions, ReynoldsParams, ReynoldsSolver, SupplyModel,
 };
+use jbearing_validation::generated_docs::{fixed, signed, write_if_requested};
 
 const R: f64 = 0.05;
 const C: f64 = 50e-6;
@@ -39,6 +40,24 @@ fn midplane_force(sol: &FilmSolution, p_amb: f64) -> [f64; 2] {
 
 /// Full Sommerfeld (infinitely long, full film): W/L = 12π μ U R² ε / (c² (2+ε²) √(1−ε²)),
 /// U = R ω, attitude 90° (Hamrock, Fundamentals of Fluid Film Lubrication, ch. 12).
+/// The command that reproduces the block of docs/validation.md written by the test `name`.
+fn command(name: &str) -> String {
+    format!(
+        "cargo test --release -p jbearing-validation --test reynolds_closed_forms -- --nocapture {name}"
+    )
+}
+
+/// The header of the Reynolds-solver tables of docs/validation.md.
+const HEADER: &str = "| case | reference | ours | error |\n|---|---|---|---|\n";
+
+/// Signed percentages joined by " / ".
+fn percents(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| signed(100.0 * x, 2))
+        .collect::<Vec<_>>()
+        .join(" / ")
+}
+
 #[test]
 fn long_bearing_matches_full_sommerfeld() {
     let omega = 10.0;
@@ -50,6 +69,7 @@ fn long_bearing_matches_full_sommerfeld() {
         n_z: 81,
     };
     let mut s = ReynoldsSolver::new(p).unwrap();
+    let (mut errs, mut atts) = (Vec::new(), Vec::new());
     for eps in [0.2, 0.4, 0.6, 0.8] {
         let sol = s.solve_steady([eps, 0.0], &rotation(omega)).unwrap();
         assert_eq!(sol.cavitated_fraction, 0.0);
@@ -71,7 +91,18 @@ fn long_bearing_matches_full_sommerfeld() {
         // 120 nodes around) plus the film's compressibility at 1 MPa / 1.5 GPa.
         assert!(err.abs() < 0.01, "ε = {eps}: {err}");
         assert!((att.abs() - 90.0).abs() < 0.5, "ε = {eps}: attitude {att}");
+        errs.push(err);
+        atts.push(att.abs());
     }
+    let table = format!(
+        "{HEADER}| long bearing L/D = 20, full film (p_amb = 5 MPa), mid-plane load per length, ε = 0.2 / 0.4 / 0.6 / 0.8 (120 × 81) | full Sommerfeld | {} %; attitude {} … {}° | ≤ 1 %, 90 ± 0.5° |\n",
+        percents(&errs),
+        fixed(atts.iter().copied().fold(f64::INFINITY, f64::min), 2),
+        fixed(atts.iter().copied().fold(0.0, f64::max), 2),
+    );
+    print!("{table}");
+    let name = "long_bearing_matches_full_sommerfeld";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }
 
 /// Ocvirk (short bearing, half-Sommerfeld = Reynolds condition for the short bearing):
@@ -87,6 +118,7 @@ fn short_bearing_matches_ocvirk() {
         n_z: 21,
     };
     let mut s = ReynoldsSolver::new(p).unwrap();
+    let (mut errs, mut datt) = (Vec::new(), 0.0f64);
     for eps in [0.2f64, 0.4, 0.6, 0.8] {
         let sol = s.solve_steady([eps, 0.0], &rotation(omega)).unwrap();
         let u = R * omega;
@@ -105,7 +137,17 @@ fn short_bearing_matches_ocvirk() {
         // pressure flow, an O((L/D)²) effect that lowers the finite-bearing load by ~1–3 %.
         assert!(err.abs() < 0.03, "ε = {eps}: {err}");
         assert!((att - att_ref).abs() < 3.0, "ε = {eps}: {att} vs {att_ref}");
+        errs.push(err);
+        datt = datt.max((att - att_ref).abs());
     }
+    let table = format!(
+        "{HEADER}| short bearing L/D = 0.1, ε = 0.2 / 0.4 / 0.6 / 0.8 (120 × 21) | Ocvirk | {} %; attitude within {}° | ≤ 3 %, 3° |\n",
+        percents(&errs),
+        fixed(datt, 2),
+    );
+    print!("{table}");
+    let name = "short_bearing_matches_ocvirk";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }
 
 /// Observed order of accuracy under grid refinement (full film, L/D = 1, ε = 0.5): three
@@ -130,4 +172,11 @@ fn observed_order_is_two() {
     eprintln!("order: loads {loads:?} → observed order {order:.3}");
     // Second-order scheme: the observed order lies near 2 once in the asymptotic range.
     assert!((order - 2.0).abs() < 0.25, "observed order {order}");
+    let table = format!(
+        "{HEADER}| observed order, full film L/D = 1, ε = 0.5 (30 / 60 / 120 around, 8 / 16 / 32 cells) | 2 | {} | 2 ± 0.25 |\n",
+        fixed(order, 2)
+    );
+    print!("{table}");
+    let name = "observed_order_is_two";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }

@@ -12,7 +12,29 @@ use std::f64::consts::PI;
 use jbearing_solvers::reynolds::{
     FilmSolution, GridParams, OperatingConditions, ReynoldsParams, ReynoldsSolver, SupplyModel,
 };
+use jbearing_validation::generated_docs::{fixed, write_if_requested};
 use jbearing_validation::read_reference_csv;
+use std::fmt::Write;
+
+/// The command that reproduces the block of docs/validation.md written by the test `name`.
+fn command(name: &str) -> String {
+    format!(
+        "cargo test --release -p jbearing-validation --test reynolds_tables -- --nocapture {name}"
+    )
+}
+
+/// The header of the Reynolds-solver tables of docs/validation.md.
+const HEADER: &str = "| case | reference | ours | error |\n|---|---|---|---|\n";
+
+/// B/d as the docs write it.
+fn ratio(bd: f64) -> &'static str {
+    match bd {
+        x if (x - 1.0).abs() < 1e-9 => "1",
+        x if (x - 0.5).abs() < 1e-9 => "1/2",
+        x if (x - 1.0 / 3.0).abs() < 1e-9 => "1/3",
+        _ => "?",
+    }
+}
 
 const R: f64 = 0.05;
 const C: f64 = 50e-6;
@@ -70,8 +92,10 @@ fn butenschoen_numbers(sol: &FilmSolution, b_over_d: f64) -> (f64, f64, f64) {
 fn butenschoen_rotation_table() {
     let rows = read_reference_csv("butenschoen_rotation.csv");
     let mut worst = (0.0f64, 0.0f64, 0.0f64);
+    let mut table = String::from(HEADER);
     for bd in [1.0, 0.5, 1.0 / 3.0] {
         let mut s = solver(bd, GridParams::default());
+        let mut worst_bd = (0.0f64, 0.0f64, 0.0f64);
         for row in rows
             .iter()
             .filter(|r| (r[0] - bd).abs() < 1e-3 && r[1] <= 0.9 + 1e-9)
@@ -92,10 +116,23 @@ fn butenschoen_rotation_table() {
                 worst.1.max(e_b.abs()),
                 worst.2.max(e_q.abs()),
             );
+            worst_bd = (
+                worst_bd.0.max(e_so.abs()),
+                worst_bd.1.max(e_b.abs()),
+                worst_bd.2.max(e_q.abs()),
+            );
             assert!(e_so.abs() < 0.03, "B/d {bd} ε {eps}: So {so} vs {so_ref}");
             assert!(e_b.abs() < 1.5, "B/d {bd} ε {eps}: β {beta} vs {beta_ref}");
             assert!(e_q.abs() < 0.05, "B/d {bd} ε {eps}: Q {q} vs {q_ref}");
         }
+        let _ = writeln!(
+            table,
+            "| Butenschön B/d = {}, ε = 0.1 … 0.9 | table | worst So {} %, β {}°, Q {} % | 3 %, 1.5°, 5 % |",
+            ratio(bd),
+            fixed(100.0 * worst_bd.0, 2),
+            fixed(worst_bd.1, 2),
+            fixed(100.0 * worst_bd.2, 2),
+        );
     }
     eprintln!(
         "Butenschön worst: So {:.2} %, β {:.2}°, Q {:.2} %",
@@ -103,6 +140,9 @@ fn butenschoen_rotation_table() {
         worst.1,
         100.0 * worst.2
     );
+    print!("{table}");
+    let name = "butenschoen_rotation_table";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }
 
 #[test]
@@ -110,9 +150,12 @@ fn raimondi_boyd_table() {
     let rows = read_reference_csv("raimondi_boyd_full.csv");
     let mut worst = (0.0f64, 0.0f64, 0.0f64);
     let mut worst_friction = 0.0f64;
+    let mut table = String::from(HEADER);
     for ld in [1.0, 0.5] {
         let l = ld * 2.0 * R;
         let mut s = solver(ld, GridParams::default());
+        // Worst S, φ, Qs and (R/c)f of this L/D.
+        let mut worst_ld = [0.0f64; 4];
         for row in rows
             .iter()
             .filter(|r| (r[0] - ld).abs() < 1e-6 && r[1] <= 0.9 + 1e-9)
@@ -161,7 +204,19 @@ fn raimondi_boyd_table() {
             assert!(e_s.abs() < 0.03, "L/D {ld} ε {eps}: S {som} vs {s_ref}");
             assert!(e_p.abs() < 1.5, "L/D {ld} ε {eps}: φ {phi} vs {phi_ref}");
             assert!(e_q.abs() < 0.05, "L/D {ld} ε {eps}: Qs {qs} vs {qs_ref}");
+            for (w, e) in worst_ld.iter_mut().zip([e_s, e_p, e_q, e_f]) {
+                *w = w.max(e.abs());
+            }
         }
+        let _ = writeln!(
+            table,
+            "| Raimondi–Boyd L/D = {}, ε = 0.1 … 0.9 | table | worst S {} %, φ {}°, Qs {} %, (R/c)f {} % | 3 %, 1.5°, 5 %, 2 % |",
+            ratio(ld),
+            fixed(100.0 * worst_ld[0], 2),
+            fixed(worst_ld[1], 2),
+            fixed(100.0 * worst_ld[2], 2),
+            fixed(100.0 * worst_ld[3], 2),
+        );
     }
     eprintln!(
         "Raimondi–Boyd worst: S {:.2} %, φ {:.2}°, Qs {:.2} %, (R/c)f {:.2} %",
@@ -170,6 +225,9 @@ fn raimondi_boyd_table() {
         100.0 * worst.2,
         100.0 * worst_friction
     );
+    print!("{table}");
+    let name = "raimondi_boyd_table";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }
 
 /// Grid convergence behind the default grid (120 × 31): at B/d = 1, ε = 0.6 and 0.9 the
@@ -179,6 +237,10 @@ fn raimondi_boyd_table() {
 /// (β) of the fine grid — a third of the table tolerances.
 #[test]
 fn default_grid_is_converged() {
+    let grid_names = ["60 × 16", "120 × 31 (default)", "240 × 60"];
+    // cells[grid][ε]: "So, β°, Q"; the last row is Butenschön's table.
+    let mut cells = vec![Vec::new(); 4];
+    let table_rows = read_reference_csv("butenschoen_rotation.csv");
     for eps in [0.6, 0.9] {
         let mut res = Vec::new();
         for grid in [
@@ -201,12 +263,37 @@ fn default_grid_is_converged() {
             );
             res.push(v);
         }
+        for (k, v) in res.iter().enumerate() {
+            cells[k].push(format!(
+                "{}, {}°, {}",
+                fixed(v.0, 4),
+                fixed(v.1, 2),
+                fixed(v.2, 4)
+            ));
+        }
+        let r = table_rows
+            .iter()
+            .find(|r| (r[0] - 1.0).abs() < 1e-3 && (r[1] - eps).abs() < 1e-9)
+            .expect("the table has B/d 1 at this ε");
+        cells[3].push(format!(
+            "{}, {}°, {}",
+            fixed(r[2], 4),
+            fixed(r[3], 2),
+            fixed(r[4], 4)
+        ));
         let (c, d, f) = (res[0], res[1], res[2]);
         let rel = |a: f64, b: f64| ((a - b) / b).abs();
         assert!(rel(d.0, f.0) < 0.01 && rel(d.2, f.2) < 0.01 && (d.1 - f.1).abs() < 0.3);
         assert!(rel(d.0, f.0) < rel(c.0, f.0));
         assert!(rel(d.2, f.2) < rel(c.2, f.2));
     }
+    let mut table = String::from("| grid | ε = 0.6 | ε = 0.9 |\n|---|---|---|\n");
+    for (name, row) in grid_names.iter().chain(&["table"]).zip(&cells) {
+        let _ = writeln!(table, "| {name} | {} |", row.join(" | "));
+    }
+    print!("{table}");
+    let name = "default_grid_is_converged";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }
 
 /// Butenschön's rows at ε = 0.95 … 0.99 (B/d = 1, 1/2, 1/3) at the default grid, against the
@@ -217,6 +304,8 @@ fn default_grid_is_converged() {
 fn butenschoen_rotation_table_high_eccentricity() {
     let rows = read_reference_csv("butenschoen_rotation.csv");
     let mut worst = (0.0f64, 0.0f64, 0.0f64);
+    // Where the worst So lies: (B/d, ε).
+    let mut worst_at = (0.0, 0.0);
     for bd in [1.0, 0.5, 1.0 / 3.0] {
         let mut s = solver(bd, GridParams::default());
         for row in rows
@@ -232,6 +321,9 @@ fn butenschoen_rotation_table_high_eccentricity() {
                 100.0 * e_so,
                 100.0 * e_q,
             );
+            if e_so.abs() > worst.0 {
+                worst_at = (bd, eps);
+            }
             worst = (
                 worst.0.max(e_so.abs()),
                 worst.1.max(e_b.abs()),
@@ -248,6 +340,17 @@ fn butenschoen_rotation_table_high_eccentricity() {
     assert!(worst.0 < 0.02, "So {:.2} %", 100.0 * worst.0);
     assert!(worst.1 < 0.5, "β {:.2}°", worst.1);
     assert!(worst.2 < 0.02, "Q {:.2} %", 100.0 * worst.2);
+    let table = format!(
+        "{HEADER}| Butenschön B/d = 1, 1/2, 1/3, ε = 0.95 … 0.99 | table | worst So {} % (B/d {}, ε {}), β {}°, Q {} % | 2 %, 0.5°, 2 % |\n",
+        fixed(100.0 * worst.0, 2),
+        ratio(worst_at.0),
+        worst_at.1,
+        fixed(worst.1, 2),
+        fixed(100.0 * worst.2, 2),
+    );
+    print!("{table}");
+    let name = "butenschoen_rotation_table_high_eccentricity";
+    write_if_requested("validation.md", &command(name), &table).expect("docs block");
 }
 
 /// Below the tables' B/d = 1/3: B/d = 1/4 and 1/8 have no published rows here, so the default

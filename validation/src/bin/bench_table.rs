@@ -17,7 +17,7 @@
 //! `<!-- BEGIN generated: cargo bench-table -->` (`cargo bench-table GROUP` for another group)
 //! and `<!-- END generated -->`.
 use anyhow::{Context, Result, bail};
-use jbearing_validation::generated_docs::{docs_page, take_report, write_generated_block};
+use jbearing_validation::generated_docs::{docs_page, machine, take_report, write_generated_block};
 use jbearing_validation::{report, report_part};
 use serde_json::Value;
 use std::collections::BTreeMap;
@@ -301,25 +301,6 @@ fn print_kernel_ratios(results: &Results) {
             (None, _) => report!(" (information) | |"),
         }
     }
-}
-
-/// "AMD EPYC, 2 logical CPUs" from /proc/cpuinfo.
-fn machine() -> String {
-    let Ok(info) = fs::read_to_string("/proc/cpuinfo") else {
-        return "unknown machine (no /proc/cpuinfo)".to_string();
-    };
-    let model = info
-        .lines()
-        .find_map(|l| {
-            let (k, v) = l.split_once(':')?;
-            (k.trim() == "model name").then(|| v.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".to_string());
-    let cpus = info
-        .lines()
-        .filter(|l| l.split(':').next().is_some_and(|k| k.trim() == "processor"))
-        .count();
-    format!("{model}, {cpus} logical CPUs")
 }
 
 /// "YYYY-MM-DD HH:MM UTC" of a system time (civil-from-days, Howard Hinnant's algorithm).

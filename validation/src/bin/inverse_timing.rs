@@ -39,7 +39,7 @@ use jbearing_solvers::inverse::{
 use jbearing_solvers::load::{FnLoad, OperatingHistory};
 use jbearing_solvers::reynolds::{FilmState, LinearSolver, TimeScheme};
 use jbearing_validation::compressor_main::{FEED, OMEGA, pulse_load, reynolds_params};
-use jbearing_validation::generated_docs::{docs_page, take_report, write_generated_block};
+use jbearing_validation::generated_docs::{docs_page, machine, take_report, write_generated_block};
 use jbearing_validation::report;
 use std::f64::consts::TAU;
 
@@ -152,17 +152,6 @@ fn run(
         krylov: film.krylov_iterations,
         solution,
     })
-}
-
-fn machine() -> String {
-    let info = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
-    let model = info
-        .lines()
-        .find_map(|l| l.strip_prefix("model name"))
-        .map(|l| l.trim_start_matches([' ', '\t', ':']).to_string())
-        .unwrap_or_else(|| "unknown CPU".into());
-    let cpus = info.lines().filter(|l| l.starts_with("processor")).count();
-    format!("{model}, {cpus} logical CPUs")
 }
 
 fn main() -> Result<()> {

@@ -23,7 +23,7 @@ use jbearing_solvers::mechanism::{
     DEFAULT_BDF2_ERROR_TOLERANCE, Integrator, JointFilm, LubricatedJointParams, MechanismParams,
     MechanismSolution, RodSliderJoint, SliderCrankParams, solve_mechanism,
 };
-use jbearing_validation::generated_docs::{docs_page, take_report, write_generated_block};
+use jbearing_validation::generated_docs::{docs_page, machine, take_report, write_generated_block};
 use jbearing_validation::report;
 
 fn thread_cpu_seconds() -> f64 {
@@ -36,17 +36,6 @@ fn thread_cpu_seconds() -> f64 {
     let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
     assert_eq!(rc, 0, "clock_gettime(CLOCK_THREAD_CPUTIME_ID) failed");
     t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
-}
-
-fn machine() -> String {
-    let info = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
-    let model = info
-        .lines()
-        .find_map(|l| l.strip_prefix("model name"))
-        .map(|l| l.trim_start_matches([' ', '\t', ':']).to_string())
-        .unwrap_or_else(|| "unknown CPU".into());
-    let cpus = info.lines().filter(|l| l.starts_with("processor")).count();
-    format!("{model}, {cpus} logical CPUs")
 }
 
 /// Median time (s) of `repeat` runs and the last solution.
