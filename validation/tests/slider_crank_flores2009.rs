@@ -22,6 +22,21 @@ use jbearing_solvers::mechanism::{
     MechanismSolution, RodSliderJoint, SliderCrankParams, solve_mechanism,
 };
 use jbearing_solvers::reynolds::GridParams;
+use jbearing_validation::generated_docs::{fixed, signed, write_if_requested};
+
+/// The command that measures the table of test `name` (the marker of its block in
+/// docs/slider-crank.md).
+fn command(name: &str) -> String {
+    format!(
+        "cargo test --release -p jbearing-validation --test slider_crank_flores2009 -- --nocapture {name}"
+    )
+}
+
+/// Writes `table` into the block of test `name` in docs/slider-crank.md when asked
+/// (`JBEARING_WRITE_DOCS=1`); called after the test's assertions.
+fn write_table(name: &str, table: &str) {
+    write_if_requested("slider-crank.md", &command(name), table).expect("docs block");
+}
 
 fn run(c: f64, mu: f64, turns: usize) -> MechanismSolution {
     let mut p = MechanismParams::new(
@@ -490,6 +505,9 @@ fn clearance_and_viscosity_study() {
     );
     println!("|---|---|---|---|---|---|---|---|");
     let mut h = std::collections::HashMap::new();
+    let mut table = String::from(
+        "| c (mm) | μ (cP) | min h_min (µm) | max ε | peak joint force (N) | peak crank moment (N m) | contact onsets |\n|---|---|---|---|---|---|---|\n",
+    );
     for c in [0.1e-3, 0.2e-3, 0.5e-3] {
         for mu in [0.4, 0.04] {
             let s = run(c, mu, 2);
@@ -522,6 +540,18 @@ fn clearance_and_viscosity_study() {
                 assert_eq!(e.kind, want, "c {c} μ {mu}: {:?}", s.contact_events);
                 assert!((e.radial_velocity > 0.0) == (want == ContactEventKind::Onset));
             }
+            let h_min = s.info.min_film_thickness.unwrap();
+            table.push_str(&format!(
+                "| {} | {} | {}{} | {} | {} | {} | {} |\n",
+                fixed(1e3 * c, 1),
+                fixed(1e3 * mu, 0),
+                fixed(1e6 * h_min, 1),
+                if h_min < 0.0 { " (contact)" } else { "" },
+                fixed(s.info.max_eccentricity_ratio, 3),
+                fixed(s.info.max_joint_force, 0),
+                fixed(s.info.max_crank_moment, 1),
+                onsets.len()
+            ));
             h.insert(
                 ((c * 1e4) as i64, (mu * 100.0) as i64),
                 (
@@ -545,6 +575,7 @@ fn clearance_and_viscosity_study() {
     let (_, onsets, fmax) = h[&(5, 4)];
     assert!(onsets >= 1);
     assert!(fmax > 1.2 * peak_ideal, "{fmax} vs {peak_ideal}");
+    write_table("clearance_and_viscosity_study", &table);
 }
 
 #[test]
@@ -563,6 +594,9 @@ fn closed_form_films_against_the_reynolds_film() {
         .iter()
         .map(|l| norm(l.rod_slider))
         .fold(0.0, f64::max);
+    let mut table = String::from(
+        "| c (mm) | μ (cP) | h_min [µm]: Pinkus–Sternlicht / short Gumbel / long Gumbel / long Sommerfeld / **Reynolds** | peak joint force [N]: P–S / **Reynolds** | peak crank moment [N m]: P–S / **Reynolds** | contact onsets: P–S / Reynolds |\n|---|---|---|---|---|---|\n",
+    );
     for c in [0.1e-3, 0.2e-3, 0.5e-3] {
         for mu in [0.4, 0.04] {
             let mut films: Vec<(String, JointFilm)> = ClosedFormModel::ALL
@@ -577,6 +611,8 @@ fn closed_form_films_against_the_reynolds_film() {
             };
             films.push(("reynolds 60×15".into(), JointFilm::Reynolds(Box::new(rp))));
             let mut h_of = std::collections::HashMap::new();
+            // (peak force, peak moment, contact onsets) of each film, for the docs table.
+            let mut peaks_of = std::collections::HashMap::new();
             for (name, film) in films {
                 let mut joint = base.clone();
                 joint.film = film;
@@ -606,6 +642,10 @@ fn closed_form_films_against_the_reynolds_film() {
                             s.info.max_crank_moment
                         );
                         h_of.insert(name.clone(), h2);
+                        peaks_of.insert(
+                            name.clone(),
+                            (s.info.max_joint_force, s.info.max_crank_moment, onsets),
+                        );
                         // Where the film stays thick (c ≤ 0.2 mm at 400 cP: h_min ≫ 3 µm) the
                         // joint force is the slider's and rod's inertia whatever the film:
                         // within 10 % of the ideal joint's peak in the second turn. (Thin films
@@ -647,8 +687,27 @@ fn closed_form_films_against_the_reynolds_film() {
                     h_of[full]
                 );
             }
+            let um = |name: &str| fixed(1e6 * h_of[name], 2);
+            let (ps, rey) = (peaks_of["pinkus_sternlicht"], peaks_of["reynolds 60×15"]);
+            table.push_str(&format!(
+                "| {} | {} | {} / {} / {} / {} / **{}** | {} / **{}** | {} / **{}** | {} / {} |\n",
+                fixed(1e3 * c, 1),
+                fixed(1e3 * mu, 0),
+                um("pinkus_sternlicht"),
+                um("short_gumbel"),
+                um("long_gumbel"),
+                um("long_sommerfeld"),
+                um("reynolds 60×15"),
+                fixed(ps.0, 0),
+                fixed(rey.0, 0),
+                fixed(ps.1, 1),
+                fixed(rey.1, 1),
+                ps.2,
+                rey.2
+            ));
         }
     }
+    write_table("closed_form_films_against_the_reynolds_film", &table);
 }
 
 /// The paper's own formulation (\[Flores2009\] §6, eqs. 39–41) as an independent check of the
@@ -1207,8 +1266,17 @@ fn bdf2_error_control_makes_the_impact_peak_converge() {
     };
     println!("Radau5 peak {radau:.1} N");
     let mut diffs = Vec::new();
-    for tol in [1e-3, 1e-4, 1e-5, 1e-6, 1e-7] {
+    let tols = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7];
+    let mut rows = [
+        String::from("| peak contact force (N) |"),
+        String::from("| − Radau5 (N) |"),
+        String::from("| steps (rejected) |"),
+    ];
+    for tol in tols {
         let (peak, steps, rejected) = run_tol(&mut p, tol);
+        rows[0].push_str(&format!(" {} |", fixed(peak, 1)));
+        rows[1].push_str(&format!(" {} |", signed(peak - radau, 1)));
+        rows[2].push_str(&format!(" {steps} ({rejected}) |"));
         println!(
             "tol {tol:e}: peak contact force {peak:.1} N, − Radau5 {:+.1} N, {steps} steps, {rejected} rejected",
             peak - radau
@@ -1234,6 +1302,21 @@ fn bdf2_error_control_makes_the_impact_peak_converge() {
         (peak / radau - 1.0).abs() < 2e-2,
         "default: {peak} vs {radau}"
     );
+    let mut table = String::from("| tolerance (ε) |");
+    for tol in tols {
+        let default = if tol == default_tol { " (default)" } else { "" };
+        table.push_str(&format!(" {tol:e}{default} |"));
+    }
+    table.push_str(&format!("\n|---{}\n", "|---".repeat(tols.len()) + "|"));
+    for row in rows {
+        table.push_str(&row);
+        table.push('\n');
+    }
+    table.push_str(&format!(
+        "\nRadau5 (rtol 1e-8, the reference): {} N.\n",
+        fixed(radau, 1)
+    ));
+    write_table("bdf2_error_control_makes_the_impact_peak_converge", &table);
 }
 
 /// Issue 16, gap 1: the Reynolds film under error control (its default integrator). The peak
@@ -1288,8 +1371,23 @@ fn reynolds_film_under_error_control_converges() {
         1e6 * h_ref
     );
     let mut errs = Vec::new();
-    for tol in [1e-4, 1e-5, 1e-6] {
+    let tols = [1e-4, 1e-5, 1e-6];
+    let mut rows = [
+        String::from("| peak joint force (N; the start transient, at 1°) |"),
+        String::from("| peak crank moment (N m) |"),
+        String::from("| min h_min (µm) |"),
+        String::from("| steps (2 turns) |"),
+    ];
+    for tol in tols {
         let (f, m, h, steps) = run(&mut p, 360, Some(tol));
+        rows[0].push_str(&format!(" {} ({}) |", fixed(f, 1), signed(f - f_ref, 1)));
+        rows[1].push_str(&format!(" {} ({}) |", fixed(m, 3), signed(m - m_ref, 3)));
+        rows[2].push_str(&format!(
+            " {} ({} nm) |",
+            fixed(1e6 * h, 4),
+            signed(1e9 * (h - h_ref), 0)
+        ));
+        rows[3].push_str(&format!(" {steps} |"));
         println!(
             "tol {tol:e}: peak force {f:.1} N ({:+.1}), moment {m:.3} N m ({:+.3}), h_min {:.4} µm ({:+.2} nm), {steps} steps",
             f - f_ref,
@@ -1300,7 +1398,7 @@ fn reynolds_film_under_error_control_converges() {
         errs.push([(f - f_ref).abs(), (m - m_ref).abs(), (h - h_ref).abs()]);
     }
     // Measured errors at 1e-4, 1e-5, 1e-6: force 108, 21, 4 N (factor ~5 per decade, tol^{2/3}
-    // gives 4.6), moment 2.1, 0.26, 0.06 N m: each decade shrinks both at least 3×. (h_min moves
+    // gives 4.6), moment 2.1, 0.27, 0.06 N m: each decade shrinks both at least 3×. (h_min moves
     // by nanometres only: 16, 7, 1 nm of 62 µm; asserted to shrink and to stay below 20 nm.)
     for w in errs.windows(2) {
         assert!(w[1][0] < w[0][0] / 3.0, "force {errs:?}");
@@ -1314,4 +1412,21 @@ fn reynolds_film_under_error_control_converges() {
         errs[1][0] < 1.5e-2 * f_ref && errs[1][1] < 5e-3 * m_ref,
         "{errs:?}"
     );
+    let default_tol = jbearing_solvers::mechanism::DEFAULT_BDF2_ERROR_TOLERANCE;
+    let mut table = String::from("| tolerance (ε) |");
+    for tol in tols {
+        let default = if tol == default_tol { " (default)" } else { "" };
+        table.push_str(&format!(" {tol:e}{default} |"));
+    }
+    table.push_str(" reference |\n|---|---|---|---|---|\n");
+    let refs = [
+        fixed(f_ref, 1),
+        fixed(m_ref, 3),
+        fixed(1e6 * h_ref, 4),
+        "–".to_string(),
+    ];
+    for (row, r) in rows.iter().zip(refs) {
+        table.push_str(&format!("{row} {r} |\n"));
+    }
+    write_table("reynolds_film_under_error_control_converges", &table);
 }
