@@ -29,16 +29,26 @@ const COMMAND: &str = "bash scripts/run_compressor.sh && cargo run --release -p 
 /// The cases of the batch, in the table's order.
 const CASES: [&str; 2] = ["compressor_main", "compressor_rod"];
 
+/// The method columns of a summary, in the table's order.
+const METHODS: [(usize, &str); 2] = [
+    (0, "rigorous (JFO, inverse)"),
+    (1, "mobility (finite-length map)"),
+];
+
 /// One `CASE_summary.csv`: quantity → (rigorous, mobility, mobility_deviation_percent), cells
 /// as written (empty where a method has no value).
 struct Summary {
+    path: PathBuf,
     rows: HashMap<String, [String; 3]>,
 }
 
 impl Summary {
     fn read(path: &Path) -> Result<Self> {
         let mut r = csv::Reader::from_path(path).with_context(|| format!("{}", path.display()))?;
-        let header = r.headers()?.clone();
+        let header = r
+            .headers()
+            .with_context(|| format!("{}", path.display()))?
+            .clone();
         let col = |name: &str| {
             header
                 .iter()
@@ -57,7 +67,10 @@ impl Summary {
             let cell = |i: usize| rec.get(i).unwrap_or("").to_string();
             rows.insert(cell(q), [cell(rig), cell(mob), cell(dev)]);
         }
-        Ok(Self { rows })
+        Ok(Self {
+            path: path.to_path_buf(),
+            rows,
+        })
     }
 
     /// The cell of `quantity` for method column `m` (0 rigorous, 1 mobility, 2 deviation).
@@ -68,58 +81,34 @@ impl Summary {
             .filter(|c| !c.is_empty())
     }
 
-    /// The number of `quantity` for method column `m`, scaled; an error if it is missing or not
-    /// a number (the table never shows a blank where the batch should have written a value).
+    /// The number of `quantity` for method column `m`, scaled; an error naming the file if it
+    /// is missing or not a finite number (the table never shows a blank where the batch should
+    /// have written a value).
     fn number(&self, quantity: &str, m: usize, scale: f64) -> Result<f64> {
+        let file = self.path.display();
         let c = self
             .cell(quantity, m)
-            .with_context(|| format!("no value of {quantity} (column {m})"))?;
+            .with_context(|| format!("{file}: no value of {quantity} (column {m})"))?;
         let v: f64 = c
             .parse()
-            .with_context(|| format!("{quantity}: {c:?} is not a number"))?;
+            .with_context(|| format!("{file}: {quantity}: {c:?} is not a number"))?;
         if !v.is_finite() {
-            bail!("{quantity}: {v} is not finite");
+            bail!("{file}: {quantity}: {v} is not finite");
         }
         Ok(scale * v)
     }
 }
 
-fn main() -> Result<()> {
-    let mut args: Vec<String> = std::env::args().skip(1).collect();
-    let write_docs = args.iter().any(|a| a == "--write-docs");
-    args.retain(|a| a != "--write-docs");
-    let results: PathBuf = match args.as_slice() {
-        [] => Path::new(env!("CARGO_MANIFEST_DIR")).join("../results"),
-        [flag, dir] if flag == "--results" => PathBuf::from(dir),
-        other => bail!("unexpected arguments {other:?} (expected --results DIR, --write-docs)"),
-    };
-    let mut summaries = Vec::new();
-    let mut written = None;
+/// The table's rows (header, separator, one row per case and method) from the summaries of
+/// [`CASES`] in `results`.
+fn table_rows(results: &Path) -> Result<Vec<String>> {
+    let mut rows = vec![
+        "| bearing | method | T_eff / T_out [°C] | μ_eff [mPa·s] | h_min, cycle min [µm] | ε max | side flow, mean [cm³/s] | power loss, mean [W] | peak pressure [MPa] | status |".to_string(),
+        "|---|---|---|---|---|---|---|---|---|---|".to_string(),
+    ];
     for case in CASES {
-        let path = results.join(format!("{case}_summary.csv"));
-        let modified = std::fs::metadata(&path)
-            .and_then(|m| m.modified())
-            .with_context(|| format!("{} (run bash scripts/run_compressor.sh)", path.display()))?;
-        written = written.max(Some(modified));
-        summaries.push((case, Summary::read(&path)?));
-    }
-    let written = jiff::Timestamp::try_from(written.expect("two cases"))
-        .context("summary file time")?
-        .strftime("%Y-%m-%d %H:%M UTC");
-    report!(
-        "Machine: {}. Summaries written: {written} by `bash scripts/run_compressor.sh` (release \
-         build; both bearings in parallel, one core each). Deviations: mobility against rigorous.\n",
-        machine(),
-    );
-    report!(
-        "| bearing | method | T_eff / T_out [°C] | μ_eff [mPa·s] | h_min, cycle min [µm] | ε max | side flow, mean [cm³/s] | power loss, mean [W] | peak pressure [MPa] | status |"
-    );
-    report!("|---|---|---|---|---|---|---|---|---|---|");
-    for (case, s) in &summaries {
-        for (m, method) in [
-            (0, "rigorous (JFO, inverse)"),
-            (1, "mobility (finite-length map)"),
-        ] {
+        let s = Summary::read(&results.join(format!("{case}_summary.csv")))?;
+        for (m, method) in METHODS {
             let context = || format!("{case}, {method}");
             let value = |q: &str, scale: f64, decimals: usize| -> Result<String> {
                 let v = fixed(s.number(q, m, scale).with_context(context)?, decimals);
@@ -135,7 +124,7 @@ fn main() -> Result<()> {
                     decimals,
                 ))
             };
-            report!(
+            rows.push(format!(
                 "| {case} | {method} | {} / {} | {} | {} | {} | {} | {} | {} | {} |",
                 plain("effective_temperature", 1.0, 1)?,
                 plain("outlet_temperature", 1.0, 1)?,
@@ -146,8 +135,46 @@ fn main() -> Result<()> {
                 value("power_loss_mean", 1.0, 1)?,
                 value("max_pressure_max", 1e-6, 2)?,
                 s.cell("status", m).unwrap_or("not run"),
-            );
+            ));
         }
+    }
+    Ok(rows)
+}
+
+/// When the summaries of `results` were last written, for the table's first line.
+fn summaries_written(results: &Path) -> Result<String> {
+    let mut written = None;
+    for case in CASES {
+        let path = results.join(format!("{case}_summary.csv"));
+        let modified = std::fs::metadata(&path)
+            .and_then(|m| m.modified())
+            .with_context(|| format!("{} (run bash scripts/run_compressor.sh)", path.display()))?;
+        written = written.max(Some(modified));
+    }
+    Ok(jiff::Timestamp::try_from(written.expect("two cases"))
+        .context("summary file time")?
+        .strftime("%Y-%m-%d %H:%M UTC")
+        .to_string())
+}
+
+fn main() -> Result<()> {
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let write_docs = args.iter().any(|a| a == "--write-docs");
+    args.retain(|a| a != "--write-docs");
+    let results: PathBuf = match args.as_slice() {
+        [] => Path::new(env!("CARGO_MANIFEST_DIR")).join("../results"),
+        [flag, dir] if flag == "--results" => PathBuf::from(dir),
+        other => bail!("unexpected arguments {other:?} (expected --results DIR, --write-docs)"),
+    };
+    let written = summaries_written(&results)?;
+    let rows = table_rows(&results)?;
+    report!(
+        "Machine: {}. Summaries written: {written} by `bash scripts/run_compressor.sh` (release \
+         build; both bearings in parallel, one core each). Deviations: mobility against rigorous.\n",
+        machine(),
+    );
+    for row in rows {
+        report!("{row}");
     }
     if write_docs {
         let page = docs_page("results.md");
@@ -156,4 +183,134 @@ fn main() -> Result<()> {
         eprintln!("wrote the block of {COMMAND:?} in {}", page.display());
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fresh directory under the system's temporary directory, removed when dropped.
+    struct TempDir(PathBuf);
+
+    impl TempDir {
+        fn new(name: &str) -> Self {
+            let dir = std::env::temp_dir().join(format!(
+                "jbearing-results-table-{name}-{}",
+                std::process::id()
+            ));
+            let _ = std::fs::remove_dir_all(&dir);
+            std::fs::create_dir_all(&dir).unwrap();
+            Self(dir)
+        }
+    }
+
+    impl Drop for TempDir {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+
+    /// A summary in the format of the application's `CsvSummaryWriter` (status first, then one
+    /// row per quantity in SI units; the long names quoted as the csv crate writes them when
+    /// they hold a comma).
+    fn summary(rigorous_h: &str, mobility_status: &str) -> String {
+        format!(
+            "quantity,units,long_name,rigorous,mobility,mobility_deviation_percent\n\
+             status,,\"ok, or what to know before trusting the method's numbers\",ok,{mobility_status},\n\
+             effective_temperature,degC,effective film temperature,87.26,87.26,\n\
+             outlet_temperature,degC,outlet temperature,95.04,95.04,\n\
+             effective_viscosity,Pa s,effective viscosity,0.00981,0.00981,\n\
+             min_film_thickness_min,m,cycle minimum of the minimum film thickness,{rigorous_h},1.5e-6,25.0\n\
+             eccentricity_ratio_max,1,cycle maximum of the eccentricity ratio,0.8504,0.83,\n\
+             side_leakage_mean,m3/s,cycle mean of the side leakage,6.3183e-6,5.9e-6,-6.62\n\
+             power_loss_mean,W,cycle mean of the power loss,56.3,50.12,-10.98\n\
+             max_pressure_max,Pa,cycle maximum of the peak pressure,1.2345e8,9.9e7,-19.8\n"
+        )
+    }
+
+    #[test]
+    fn rows_carry_the_summaries_values_in_the_tables_units() {
+        let dir = TempDir::new("rows");
+        std::fs::write(
+            dir.0.join("compressor_main_summary.csv"),
+            summary("1.2e-6", "ok"),
+        )
+        .unwrap();
+        std::fs::write(
+            dir.0.join("compressor_rod_summary.csv"),
+            summary("3.8294e-6", "not periodic"),
+        )
+        .unwrap();
+        let rows = table_rows(&dir.0).unwrap();
+        assert_eq!(rows.len(), 2 + 4, "{rows:#?}");
+        assert!(rows[0].starts_with("| bearing | method |"));
+        // Values converted by hand from the SI cells above: °C as written, Pa s → mPa·s,
+        // m → µm, m³/s → cm³/s, Pa → MPa; deviations on the mobility rows only.
+        assert_eq!(
+            rows[2],
+            "| compressor_main | rigorous (JFO, inverse) | 87.3 / 95.0 | 9.8 | 1.20 | 0.850 | 6.318 | 56.3 | 123.45 | ok |"
+        );
+        assert_eq!(
+            rows[3],
+            "| compressor_main | mobility (finite-length map) | 87.3 / 95.0 | 9.8 | 1.50 (+25.0 %) | 0.830 | 5.900 (−6.6 %) | 50.1 (−11.0 %) | 99.00 (−19.8 %) | ok |"
+        );
+        assert_eq!(
+            rows[4],
+            "| compressor_rod | rigorous (JFO, inverse) | 87.3 / 95.0 | 9.8 | 3.83 | 0.850 | 6.318 | 56.3 | 123.45 | ok |"
+        );
+        assert!(rows[5].ends_with("| not periodic |"), "{}", rows[5]);
+    }
+
+    #[test]
+    fn a_missing_summary_is_an_error_naming_the_file() {
+        let dir = TempDir::new("missing");
+        std::fs::write(
+            dir.0.join("compressor_main_summary.csv"),
+            summary("1.2e-6", "ok"),
+        )
+        .unwrap();
+        let err = format!("{:#}", table_rows(&dir.0).unwrap_err());
+        assert!(err.contains("compressor_rod_summary.csv"), "{err}");
+        let err = format!("{:#}", summaries_written(&dir.0).unwrap_err());
+        assert!(
+            err.contains("compressor_rod_summary.csv") && err.contains("run_compressor.sh"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_malformed_summary_is_an_error_naming_the_file_and_the_value() {
+        let dir = TempDir::new("malformed");
+        std::fs::write(
+            dir.0.join("compressor_main_summary.csv"),
+            summary("1.2e-6", "ok"),
+        )
+        .unwrap();
+        let rod = dir.0.join("compressor_rod_summary.csv");
+        // A cell that is not a number.
+        std::fs::write(&rod, summary("thin", "ok")).unwrap();
+        let err = format!("{:#}", table_rows(&dir.0).unwrap_err());
+        assert!(
+            err.contains("compressor_rod_summary.csv")
+                && err.contains("min_film_thickness_min")
+                && err.contains("\"thin\" is not a number")
+                && err.contains("compressor_rod, rigorous"),
+            "{err}"
+        );
+        // A missing value (the batch left the cell empty).
+        std::fs::write(&rod, summary("", "ok")).unwrap();
+        let err = format!("{:#}", table_rows(&dir.0).unwrap_err());
+        assert!(
+            err.contains("compressor_rod_summary.csv")
+                && err.contains("no value of min_film_thickness_min"),
+            "{err}"
+        );
+        // A file without the method columns.
+        std::fs::write(&rod, "quantity,units\nstatus,\n").unwrap();
+        let err = format!("{:#}", table_rows(&dir.0).unwrap_err());
+        assert!(
+            err.contains("compressor_rod_summary.csv") && err.contains("no column \"rigorous\""),
+            "{err}"
+        );
+    }
 }
