@@ -22,7 +22,7 @@ use jbearing_solvers::mechanism::{
     MechanismSolution, RodSliderJoint, SliderCrankParams, solve_mechanism,
 };
 use jbearing_solvers::reynolds::GridParams;
-use jbearing_validation::generated_docs::{fixed, signed, write_if_requested};
+use jbearing_validation::generated_docs::{fixed, sig, signed, write_if_requested};
 
 /// The command that measures the table of test `name` (the marker of its block in
 /// docs/slider-crank.md).
@@ -1200,6 +1200,7 @@ fn turn_to_turn_map_contracts_to_a_periodic_orbit() {
         assert!(*r < 0.3, "{rho:?}");
     }
     assert!(d[4] < 1e-3, "{d:?}");
+    let (d_ps, rho_ps) = (d, rho);
 
     // The Reynolds film (a coarse 40 × 11 grid: the slow mode is the film's, not the grid's;
     // 12 turns).
@@ -1238,6 +1239,24 @@ fn turn_to_turn_map_contracts_to_a_periodic_orbit() {
     }
     assert!(d[0] > 0.2, "the transient is there: {d:?}");
     assert!(d[10] < 1e-3, "{d:?}");
+    let mut table = String::from(
+        "| film | turn 2−1 | 3−2 | 4−3 | 5−4 | 6−5 | 7−6 | … 12−11 | factor per turn (first, last) |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
+    );
+    for (film, d, rho) in [
+        ("Pinkus–Sternlicht", &d_ps, &rho_ps),
+        ("Reynolds 40 × 11", &d, &rho),
+    ] {
+        let cells: Vec<String> = d[..6].iter().map(|x| sig(*x, 2)).collect();
+        let last = d.get(10).map_or("–".to_string(), |x| sig(*x, 2));
+        table += &format!(
+            "| {film} | {} | {last} | {}, {} |\n",
+            cells.join(" | "),
+            sig(rho[0], 2),
+            sig(*rho.last().expect("factors"), 2)
+        );
+    }
+    write_table("turn_to_turn_map_contracts_to_a_periodic_orbit", &table);
 }
 
 /// Issue 16, gap 3: BDF2 under error control. Fixed steps put the impact peaks of the c =
