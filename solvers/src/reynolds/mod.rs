@@ -577,6 +577,25 @@ impl FilmDeformation {
     }
 }
 
+/// A film-thickness change whose linear response [`ReynoldsSolver::thickness_responses`] gives.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ThicknessChange {
+    /// ∂h/∂ε_x (0) or ∂h/∂ε_y (1): −c cos θ, −c sin θ.
+    Eccentricity(usize),
+    /// A gap change δg, samples as in [`FilmDeformation`] (linear between them, periodic).
+    Gap(FilmDeformation),
+}
+
+/// The film's linear response to a [`ThicknessChange`].
+#[derive(Debug, Clone)]
+pub struct ThicknessResponse {
+    /// δF, N per unit of the change.
+    pub film_force: [f64; 2],
+    /// δp at the nodes `[[i, j]]` of the last solve's grid (zero where the pressure is
+    /// imposed), Pa per unit of the change.
+    pub pressure: Array2<f64>,
+}
+
 /// What the film-force Jacobian needs of the last converged solve.
 #[derive(Debug, Clone)]
 struct Linearization {
@@ -967,6 +986,35 @@ impl ReynoldsSolver {
     /// is continuous but only piecewise smooth: this is the derivative of the piece the answer
     /// lies on — what finite differences across a switching film cannot give.
     pub fn film_force_jacobian(&mut self) -> Result<[[f64; 2]; 2], ReynoldsError> {
+        let responses = self.thickness_responses(&[
+            ThicknessChange::Eccentricity(0),
+            ThicknessChange::Eccentricity(1),
+        ])?;
+        let mut jacobian = [[0.0; 2]; 2];
+        for (c, r) in responses.iter().enumerate() {
+            jacobian[0][c] = r.film_force[0];
+            jacobian[1][c] = r.film_force[1];
+        }
+        Ok(jacobian)
+    }
+
+    /// The linear response of the last solve's film (a step or a steady film) to film-thickness
+    /// changes δh: for each, the node pressures' and the film force's derivatives,
+    ///
+    /// ```text
+    ///   A(g) δψ = −∂R/∂h · δh,   δp_k = β g_k δψ_k,   δF = −Σ_k w_k δp_k (cos θ_k, sin θ_k)
+    /// ```
+    ///
+    /// on the converged switch g and the old level fixed — the linearization of
+    /// [`Self::film_force_jacobian`] (which is this with δh = ∂h/∂ε_x, ∂h/∂ε_y), for any δh. A
+    /// gap change δg ([`ThicknessChange::Gap`]) enters the film exactly as h does (h = c −
+    /// e cos(θ − ψ) + g), so this is ∂p/∂g · δg of the deformable film. One linear solve per
+    /// change, to 1e-5 of its largest right-hand side (as the Jacobian's); the eccentricity
+    /// directions start from their previous answers, a gap direction from zero.
+    pub fn thickness_responses(
+        &mut self,
+        changes: &[ThicknessChange],
+    ) -> Result<Vec<ThicknessResponse>, ReynoldsError> {
         let lin = self.last.clone().ok_or(ReynoldsError::Unsupported {
             what: "film_force_jacobian: no film has been solved yet",
         })?;
@@ -993,18 +1041,22 @@ impl ReynoldsSolver {
             },
         };
         let pressure: Vec<f64> = lin.psi.iter().zip(&lin.g).map(|(x, g)| x * g).collect();
-        let mut jacobian = [[0.0; 2]; 2];
+        let mut out = Vec::with_capacity(changes.len());
         let mut dh_node = vec![0.0; n];
         let mut dh_face = vec![0.0; n];
         let mut d_res = vec![0.0; n];
-        for c in 0..2 {
+        for change in changes {
             for i in 0..grid.n_theta {
                 let th = grid.theta(i);
                 let thf = th + 0.5 * grid.d_theta;
-                let (dn, df) = if c == 0 {
-                    (-p.clearance * th.cos(), -p.clearance * thf.cos())
-                } else {
-                    (-p.clearance * th.sin(), -p.clearance * thf.sin())
+                let (dn, df) = match change {
+                    ThicknessChange::Eccentricity(0) => {
+                        (-p.clearance * th.cos(), -p.clearance * thf.cos())
+                    }
+                    ThicknessChange::Eccentricity(_) => {
+                        (-p.clearance * th.sin(), -p.clearance * thf.sin())
+                    }
+                    ThicknessChange::Gap(d) => (d.at(th), d.at(thf)),
                 };
                 for j in 0..nz {
                     dh_node[i * nz + j] = dn;
@@ -1025,7 +1077,12 @@ impl ReynoldsSolver {
             for k in 0..n {
                 self.stencil.rhs[k] = -d_res[k];
             }
-            let mut x = std::mem::take(&mut self.sensitivity[c]);
+            let mut x = match change {
+                ThicknessChange::Eccentricity(c) => {
+                    std::mem::take(&mut self.sensitivity[(*c).min(1)])
+                }
+                ThicknessChange::Gap(_) => Vec::new(),
+            };
             x.resize(n, 0.0);
             match p.linear_solver.preconditioner() {
                 Some(pc) => {
@@ -1043,29 +1100,43 @@ impl ReynoldsSolver {
                 }
                 None => oracle::solve_lu(grid, &self.stencil, &mut x)?,
             }
+            let mut force = [0.0; 2];
+            let mut dp = Array2::zeros((grid.n_theta, nz));
             for i in 0..grid.n_theta {
                 let th = grid.theta(i);
                 for j in 0..nz {
                     let k = i * nz + j;
                     if grid.kind[k] == NodeKind::Unknown {
-                        let dp = p.bulk_modulus * lin.g[k] * x[k];
-                        jacobian[0][c] -= grid.area_weight[k] * dp * th.cos();
-                        jacobian[1][c] -= grid.area_weight[k] * dp * th.sin();
+                        let d = p.bulk_modulus * lin.g[k] * x[k];
+                        force[0] -= grid.area_weight[k] * d * th.cos();
+                        force[1] -= grid.area_weight[k] * d * th.sin();
+                        dp[[i, j]] = d;
                     }
                 }
             }
-            self.sensitivity[c] = x;
-        }
-        self.sensitivity_for = lin.dt.map(|dt| (self.grid.theta0, dt));
-        if jacobian.iter().flatten().any(|v| !v.is_finite()) {
-            return Err(ReynoldsError::NonFinite {
-                what: "film-force Jacobian",
-                theta_index: 0,
-                z_index: 0,
-                iteration: 0,
+            if let ThicknessChange::Eccentricity(c) = change {
+                self.sensitivity[(*c).min(1)] = x;
+            }
+            if force.iter().any(|v| !v.is_finite()) {
+                return Err(ReynoldsError::NonFinite {
+                    what: "film-force Jacobian",
+                    theta_index: 0,
+                    z_index: 0,
+                    iteration: 0,
+                });
+            }
+            out.push(ThicknessResponse {
+                film_force: force,
+                pressure: dp,
             });
         }
-        Ok(jacobian)
+        if changes
+            .iter()
+            .any(|c| matches!(c, ThicknessChange::Eccentricity(_)))
+        {
+            self.sensitivity_for = lin.dt.map(|dt| (self.grid.theta0, dt));
+        }
+        Ok(out)
     }
 
     /// The steady film (no squeeze) at ε, from a cold start.

@@ -14,6 +14,13 @@
 //! the block `<!-- BEGIN generated: COMMAND -->` … `<!-- END generated -->`, COMMAND being
 //! `bash scripts/run_compressor.sh && cargo run --release -p jbearing-validation --bin
 //! results_table`).
+//!
+//! With `--elastic`: the table of docs/validation.md, "Deformable bearing under a dynamic load"
+//! — the compressor rod bearing rigid (`cases/compressor_rod_rigid87.toml`) against elastic
+//! (`cases/compressor_rod_elastic.toml`, and `compressor_rod_elastic_gap1e-4` if its output is
+//! there), from each run's `CASE_summary.csv` (h_min, ε, power, side flow, status) and the
+//! rigorous group's attributes in `CASE.h5` (cycles, periodic, stalled steps, film step and
+//! Jacobian evaluations) and its `wall_time_s`; the block is [`ELASTIC_COMMAND`].
 
 use anyhow::{Context, Result, bail};
 use jbearing_validation::generated_docs::{
@@ -25,6 +32,25 @@ use std::path::{Path, PathBuf};
 
 /// The name of the block in docs/results.md.
 const COMMAND: &str = "bash scripts/run_compressor.sh && cargo run --release -p jbearing-validation --bin results_table";
+
+/// The name of the elastic block in docs/validation.md.
+const ELASTIC_COMMAND: &str = "cargo run --release -- run cases/compressor_rod_rigid87.toml --out results/ && cargo run --release -- run cases/compressor_rod_elastic.toml --out results/ && cargo run --release -p jbearing-validation --bin results_table -- --elastic";
+
+/// The rows of the elastic table: case name, film label; a row whose files are missing is an
+/// error except the optional last one (the looser gap tolerance).
+const ELASTIC_CASES: [(&str, &str, bool); 3] = [
+    ("compressor_rod_rigid87", "rigid", true),
+    (
+        "compressor_rod_elastic",
+        "elastic (gap tolerance 1e-7 c)",
+        true,
+    ),
+    (
+        "compressor_rod_elastic_gap1e-4",
+        "elastic (gap tolerance 1e-4 c)",
+        false,
+    ),
+];
 
 /// The cases of the batch, in the table's order.
 const CASES: [&str; 2] = ["compressor_main", "compressor_rod"];
@@ -160,12 +186,18 @@ fn summaries_written(results: &Path) -> Result<String> {
 fn main() -> Result<()> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     let write_docs = args.iter().any(|a| a == "--write-docs");
-    args.retain(|a| a != "--write-docs");
+    let elastic = args.iter().any(|a| a == "--elastic");
+    args.retain(|a| a != "--write-docs" && a != "--elastic");
     let results: PathBuf = match args.as_slice() {
         [] => Path::new(env!("CARGO_MANIFEST_DIR")).join("../results"),
         [flag, dir] if flag == "--results" => PathBuf::from(dir),
-        other => bail!("unexpected arguments {other:?} (expected --results DIR, --write-docs)"),
+        other => bail!(
+            "unexpected arguments {other:?} (expected --results DIR, --write-docs, --elastic)"
+        ),
     };
+    if elastic {
+        return elastic_table(&results, write_docs);
+    }
     let written = summaries_written(&results)?;
     let rows = table_rows(&results)?;
     report!(
@@ -181,6 +213,133 @@ fn main() -> Result<()> {
         write_generated_block(&page, COMMAND, &take_report())
             .with_context(|| format!("writing the block into {}", page.display()))?;
         eprintln!("wrote the block of {COMMAND:?} in {}", page.display());
+    }
+    Ok(())
+}
+
+/// The solver statistics of one run from its `CASE.h5`.
+struct RunStats {
+    wall_time: f64,
+    cycles: i64,
+    periodic: bool,
+    stalled: i64,
+    max_stalled_residual: f64,
+    film_evaluations: i64,
+    jacobian_evaluations: i64,
+    started: String,
+}
+
+impl RunStats {
+    fn read(path: &Path) -> Result<Self> {
+        let f = hdf5_metno::File::open(path).with_context(|| format!("{}", path.display()))?;
+        let g = f
+            .group("rigorous")
+            .with_context(|| format!("{}: no rigorous group", path.display()))?;
+        let int = |name: &str| -> Result<i64> {
+            g.attr(name)
+                .and_then(|a| a.read_scalar::<i64>())
+                .with_context(|| format!("{}: rigorous attribute {name}", path.display()))
+        };
+        let started = f
+            .attr("started_utc")
+            .and_then(|a| a.read_scalar::<hdf5_metno::types::VarLenUnicode>())
+            .map(|s| s.as_str().to_string())
+            .unwrap_or_default();
+        Ok(Self {
+            wall_time: f
+                .attr("wall_time_s")
+                .and_then(|a| a.read_scalar::<f64>())
+                .with_context(|| format!("{}: wall_time_s", path.display()))?,
+            cycles: int("cycles")?,
+            periodic: g
+                .attr("periodic")
+                .and_then(|a| a.read_scalar::<i8>())
+                .with_context(|| format!("{}: periodic", path.display()))?
+                != 0,
+            stalled: int("stalled_steps")?,
+            max_stalled_residual: g
+                .attr("max_stalled_residual")
+                .and_then(|a| a.read_scalar::<f64>())
+                .with_context(|| format!("{}: max_stalled_residual", path.display()))?,
+            film_evaluations: int("film_evaluations")?,
+            jacobian_evaluations: int("jacobian_evaluations")?,
+            started,
+        })
+    }
+}
+
+/// The elastic compressor-rod table (module docs) into docs/validation.md with `write_docs`.
+fn elastic_table(results: &Path, write_docs: bool) -> Result<()> {
+    let mut rows = Vec::new();
+    for (case, label, required) in ELASTIC_CASES {
+        let summary = results.join(format!("{case}_summary.csv"));
+        let h5 = results.join(format!("{case}.h5"));
+        if !(required || summary.exists() && h5.exists()) {
+            continue;
+        }
+        rows.push((
+            label,
+            Summary::read(&summary)
+                .with_context(|| format!("run cases/{case}.toml with jbearing run first"))?,
+            RunStats::read(&h5)?,
+        ));
+    }
+    let started: Vec<String> = rows
+        .iter()
+        .map(|(l, _, r)| format!("{l} {}", r.started))
+        .collect();
+    report!(
+        "Machine: {}. Runs (release build, `jbearing run`, one case at a time or two in parallel \
+         on the shared machine, so the wall times are upper bounds) started: {}.\n",
+        machine(),
+        started.join("; "),
+    );
+    report!(
+        "| film | h_min, cycle min [µm] | ε max | power loss, mean [W] | side flow, mean [cm³/s] | cycles (periodic) | stalled steps (max residual / load) | film step evaluations | Jacobians | wall time per cycle | status |"
+    );
+    report!("|---|---|---|---|---|---|---|---|---|---|---|");
+    let rigid_hmin = rows[0].1.number("min_film_thickness_min", 0, 1e6)?;
+    for (i, (label, s, r)) in rows.iter().enumerate() {
+        let hmin = s.number("min_film_thickness_min", 0, 1e6)?;
+        let hmin = if i == 0 {
+            fixed(hmin, 3)
+        } else {
+            format!(
+                "{} ({} %)",
+                fixed(hmin, 3),
+                signed(100.0 * (hmin / rigid_hmin - 1.0), 1)
+            )
+        };
+        let stalled = if r.stalled == 0 {
+            "0".to_string()
+        } else {
+            format!(
+                "{} ({})",
+                r.stalled,
+                jbearing_validation::generated_docs::sci(r.max_stalled_residual, 1)
+            )
+        };
+        report!(
+            "| {label} | {hmin} | {} | {} | {} | {} ({}) | {stalled} | {} | {} | {} s | {} |",
+            fixed(s.number("eccentricity_ratio_max", 0, 1.0)?, 4),
+            fixed(s.number("power_loss_mean", 0, 1.0)?, 2),
+            fixed(s.number("side_leakage_mean", 0, 1e6)?, 4),
+            r.cycles,
+            if r.periodic { "yes" } else { "no" },
+            r.film_evaluations,
+            r.jacobian_evaluations,
+            fixed(r.wall_time / r.cycles.max(1) as f64, 1),
+            s.cell("status", 0).unwrap_or("not run"),
+        );
+    }
+    if write_docs {
+        let page = docs_page("validation.md");
+        write_generated_block(&page, ELASTIC_COMMAND, &take_report())
+            .with_context(|| format!("writing the block into {}", page.display()))?;
+        eprintln!(
+            "wrote the block of {ELASTIC_COMMAND:?} in {}",
+            page.display()
+        );
     }
     Ok(())
 }
