@@ -1018,6 +1018,24 @@ impl ReynoldsSolver {
         let lin = self.last.clone().ok_or(ReynoldsError::Unsupported {
             what: "film_force_jacobian: no film has been solved yet",
         })?;
+        if let Some(ThicknessChange::Eccentricity(c)) = changes
+            .iter()
+            .find(|c| matches!(c, ThicknessChange::Eccentricity(k) if *k > 1))
+        {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "ThicknessChange::Eccentricity",
+                value: *c as f64,
+                reason: "the direction is 0 (x) or 1 (y)",
+            });
+        }
+        // The sensitivities are the predictor's only when both directions are of this film (a
+        // call with gap changes only leaves them alone).
+        if changes
+            .iter()
+            .any(|c| matches!(c, ThicknessChange::Eccentricity(_)))
+        {
+            self.sensitivity_for = None;
+        }
         let prep = self.prepare(lin.eccentricity_ratio, &lin.conditions, None)?;
         let p = &self.params;
         let grid = &self.grid;
@@ -1054,6 +1072,7 @@ impl ReynoldsSolver {
                         (-p.clearance * th.cos(), -p.clearance * thf.cos())
                     }
                     ThicknessChange::Eccentricity(_) => {
+                        // 1 (checked above)
                         (-p.clearance * th.sin(), -p.clearance * thf.sin())
                     }
                     ThicknessChange::Gap(d) => (d.at(th), d.at(thf)),
@@ -1078,9 +1097,7 @@ impl ReynoldsSolver {
                 self.stencil.rhs[k] = -d_res[k];
             }
             let mut x = match change {
-                ThicknessChange::Eccentricity(c) => {
-                    std::mem::take(&mut self.sensitivity[(*c).min(1)])
-                }
+                ThicknessChange::Eccentricity(c) => std::mem::take(&mut self.sensitivity[*c]),
                 ThicknessChange::Gap(_) => Vec::new(),
             };
             x.resize(n, 0.0);
@@ -1115,7 +1132,7 @@ impl ReynoldsSolver {
                 }
             }
             if let ThicknessChange::Eccentricity(c) = change {
-                self.sensitivity[(*c).min(1)] = x;
+                self.sensitivity[*c] = x;
             }
             if force.iter().any(|v| !v.is_finite()) {
                 return Err(ReynoldsError::NonFinite {
@@ -1130,10 +1147,11 @@ impl ReynoldsSolver {
                 pressure: dp,
             });
         }
-        if changes
-            .iter()
-            .any(|c| matches!(c, ThicknessChange::Eccentricity(_)))
-        {
+        if [0, 1].iter().all(|d| {
+            changes
+                .iter()
+                .any(|c| matches!(c, ThicknessChange::Eccentricity(k) if k == d))
+        }) {
             self.sensitivity_for = lin.dt.map(|dt| (self.grid.theta0, dt));
         }
         Ok(out)

@@ -132,16 +132,9 @@ fn crank_nicolson_steps_balance_mass() {
     assert!(worst < 1e-8, "worst CN step balance {worst:e}");
 }
 
-/// A step started from a nearby answer (`solve_step_from`, as the inverse solver's Newton
-/// iterates do) reaches the same discrete solution as a start from the old state: the switch
-/// field agrees node for node and the film force to the solve tolerance. (What it saves is
-/// measured by the inverse benchmarks, not here.)
-#[test]
-fn a_step_started_from_a_nearby_answer_gives_the_same_film() {
-    let mut s = ReynoldsSolver::new(grooved(LinearSolver::AdiKrylov)).unwrap();
-    let c = conditions(2e5);
-    let dt = 1e-4;
-    // A film whirling at ε = 0.6 for 30 steps, then one step to two nearby trial positions.
+/// A film whirling at ε = 0.6 for 30 steps of `dt` (0.02 rad each): the old level of the
+/// nearby-start tests.
+fn whirled_state(s: &mut ReynoldsSolver, c: &OperatingConditions, dt: f64) -> FilmState {
     let mut state = s.initial_state([0.6, 0.0]);
     for n in 1..=30 {
         let a = 0.02 * n as f64;
@@ -152,6 +145,20 @@ fn a_step_started_from_a_nearby_answer_gives_the_same_film() {
         };
         state = s.solve_step(&state, &input).unwrap().1;
     }
+    state
+}
+
+/// A step started from a nearby answer (`solve_step_from`, as the inverse solver's Newton
+/// iterates do) reaches the same discrete solution as a start from the old state: the switch
+/// field agrees node for node and the film force to the solve tolerance. (What it saves is
+/// measured by the inverse benchmarks, not here.)
+#[test]
+fn a_step_started_from_a_nearby_answer_gives_the_same_film() {
+    let mut s = ReynoldsSolver::new(grooved(LinearSolver::AdiKrylov)).unwrap();
+    let c = conditions(2e5);
+    let dt = 1e-4;
+    // The whirled film, then one step to two nearby trial positions.
+    let state = whirled_state(&mut s, &c, dt);
     let a: f64 = 0.62;
     let trial = |d: f64| StepInput {
         eccentricity_ratio: [(0.6 + d) * a.cos(), (0.6 + d) * a.sin()],
@@ -198,16 +205,7 @@ fn a_start_moved_along_the_sensitivities_gives_the_same_film() {
     let c = conditions(2e5);
     let dt = 1e-4;
     let mut s = ReynoldsSolver::new(grooved(LinearSolver::MultigridKrylov)).unwrap();
-    let mut state = s.initial_state([0.6, 0.0]);
-    for n in 1..=30 {
-        let a = 0.02 * n as f64;
-        let input = StepInput {
-            eccentricity_ratio: [0.6 * a.cos(), 0.6 * a.sin()],
-            dt,
-            conditions: c.clone(),
-        };
-        state = s.solve_step(&state, &input).unwrap().1;
-    }
+    let state = whirled_state(&mut s, &c, dt);
     let a: f64 = 0.62;
     let trial = |d: f64| StepInput {
         eccentricity_ratio: [(0.6 + d) * a.cos(), (0.6 + d) * a.sin()],
@@ -241,6 +239,14 @@ fn a_start_moved_along_the_sensitivities_gives_the_same_film() {
             unmoved.linear_iterations
         );
     }
+    // A direction other than x (0) or y (1) is an error naming it, not a silent y.
+    assert!(matches!(
+        s.thickness_responses(&[ThicknessChange::Eccentricity(2)]),
+        Err(ReynoldsError::InvalidParameter {
+            name: "ThicknessChange::Eccentricity",
+            ..
+        })
+    ));
 }
 
 /// Lemke's complementary pivoting (\[Lemke1965\]; the LCP oracle of \[Giacopini2010\]) on a
