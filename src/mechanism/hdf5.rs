@@ -41,7 +41,10 @@
 use std::path::Path;
 
 use hdf5_metno as h5;
-use jbearing_solvers::mechanism::{ContactEventKind, JointFilm, MechanismSolution, RodSliderJoint};
+use jbearing_solvers::mechanism::{
+    ContactEvent, ContactEventKind, ContactParams, JointFilm, LubricatedJointParams,
+    MechanismParams, MechanismSolution, RodSliderJoint,
+};
 use ndarray::{Array2, Array3};
 
 use super::{IDEAL, LUBRICATED, MechanismResults};
@@ -117,13 +120,37 @@ fn write_root(w: &mut FileWriter, file: &h5::File, r: &MechanismResults) -> Res<
     )
 }
 
+/// The `parameters/` group: the mechanism's and the joint's inputs as scalars, the joint, film
+/// and integrator names as attributes.
 fn write_parameters(w: &mut FileWriter, file: &h5::File, r: &MechanismResults) -> Res<()> {
     let g = file
         .create_group("parameters")
         .map_err(w.err("group parameters"))?;
     let p = &r.case.params;
+    let mut values = mechanism_parameters(p);
+    if let RodSliderJoint::Lubricated(j) = &p.joint {
+        values.extend(joint_parameters(j));
+    }
+    for (name, v, units, long) in values {
+        w.scalar(&g, name, v, units, long)?;
+    }
+    let joint = if r.case.lubricated_joint().is_some() {
+        LUBRICATED
+    } else {
+        IDEAL
+    };
+    w.str_attr(&g, "joint", joint)?;
+    w.str_attr(&g, "film", &r.case.film_name)?;
+    w.str_attr(&g, "integrator", &r.case.integrator_name)
+}
+
+/// A scalar of `parameters/`: name, value, units, long name.
+type Parameter = (&'static str, f64, &'static str, &'static str);
+
+/// The bodies, the crank drive, gravity and the output sampling.
+fn mechanism_parameters(p: &MechanismParams) -> Vec<Parameter> {
     let m = &p.mechanism;
-    let mut values: Vec<(&str, f64, &str, &str)> = vec![
+    vec![
         ("crank_length", m.crank.length, "m", "crank length O-A"),
         ("crank_mass", m.crank.mass, "kg", "crank mass"),
         (
@@ -174,109 +201,111 @@ fn write_parameters(w: &mut FileWriter, file: &h5::File, r: &MechanismResults) -
             "1",
             "output samples per turn",
         ),
-    ];
-    if let RodSliderJoint::Lubricated(j) = &p.joint {
-        let cp = &j.contact;
-        values.extend([
-            (
-                "bearing_radius",
-                j.bearing_radius,
-                "m",
-                "joint bearing radius R_b",
-            ),
-            (
-                "journal_radius",
-                j.journal_radius,
-                "m",
-                "joint journal radius R_j",
-            ),
-            (
-                "radial_clearance",
-                j.radial_clearance(),
-                "m",
-                "joint radial clearance c = R_b - R_j",
-            ),
-            ("joint_length", j.length, "m", "joint length L"),
-            ("viscosity", j.viscosity, "Pa s", "dynamic viscosity"),
-            (
-                "contact_journal_youngs_modulus",
-                cp.journal_youngs_modulus,
-                "Pa",
-                "Young's modulus of the journal",
-            ),
-            (
-                "contact_journal_poisson_ratio",
-                cp.journal_poisson_ratio,
-                "1",
-                "Poisson's ratio of the journal",
-            ),
-            (
-                "contact_bearing_youngs_modulus",
-                cp.bearing_youngs_modulus,
-                "Pa",
-                "Young's modulus of the bearing",
-            ),
-            (
-                "contact_bearing_poisson_ratio",
-                cp.bearing_poisson_ratio,
-                "1",
-                "Poisson's ratio of the bearing",
-            ),
-            (
-                "contact_restitution",
-                cp.restitution,
-                "1",
-                "coefficient of restitution",
-            ),
-            (
-                "contact_boundary_layer",
-                cp.boundary_layer,
-                "m",
-                "boundary layer h_b: dry contact starts when h_min falls below it",
-            ),
-            (
-                "contact_blend_width",
-                cp.blend_width,
-                "m",
-                "width e0 of the film-to-contact blend",
-            ),
-            (
-                "contact_min_impact_speed",
-                cp.min_impact_speed,
-                "m s-1",
-                "floor on the impact velocity",
-            ),
-        ]);
-        if let JointFilm::Reynolds(rp) = &j.film {
-            values.extend([
-                (
-                    "grid_n_theta",
-                    rp.grid.n_theta as f64,
-                    "1",
-                    "Reynolds grid nodes around",
-                ),
-                (
-                    "grid_n_z",
-                    rp.grid.n_z as f64,
-                    "1",
-                    "Reynolds grid nodes along",
-                ),
-            ]);
-        }
-    }
-    for (name, v, units, long) in values {
-        w.scalar(&g, name, v, units, long)?;
-    }
-    let joint = if r.case.lubricated_joint().is_some() {
-        LUBRICATED
-    } else {
-        IDEAL
-    };
-    w.str_attr(&g, "joint", joint)?;
-    w.str_attr(&g, "film", &r.case.film_name)?;
-    w.str_attr(&g, "integrator", &r.case.integrator_name)
+    ]
 }
 
+/// The lubricated joint's geometry and viscosity, its contact law and the grid of a Reynolds
+/// film.
+fn joint_parameters(j: &LubricatedJointParams) -> Vec<Parameter> {
+    let mut values: Vec<Parameter> = vec![
+        (
+            "bearing_radius",
+            j.bearing_radius,
+            "m",
+            "joint bearing radius R_b",
+        ),
+        (
+            "journal_radius",
+            j.journal_radius,
+            "m",
+            "joint journal radius R_j",
+        ),
+        (
+            "radial_clearance",
+            j.radial_clearance(),
+            "m",
+            "joint radial clearance c = R_b - R_j",
+        ),
+        ("joint_length", j.length, "m", "joint length L"),
+        ("viscosity", j.viscosity, "Pa s", "dynamic viscosity"),
+    ];
+    values.extend(contact_parameters(&j.contact));
+    if let JointFilm::Reynolds(rp) = &j.film {
+        values.extend([
+            (
+                "grid_n_theta",
+                rp.grid.n_theta as f64,
+                "1",
+                "Reynolds grid nodes around",
+            ),
+            (
+                "grid_n_z",
+                rp.grid.n_z as f64,
+                "1",
+                "Reynolds grid nodes along",
+            ),
+        ]);
+    }
+    values
+}
+
+/// The dry-contact law of the lubricated joint: elastic constants, restitution, boundary layer
+/// and blend.
+fn contact_parameters(cp: &ContactParams) -> Vec<Parameter> {
+    vec![
+        (
+            "contact_journal_youngs_modulus",
+            cp.journal_youngs_modulus,
+            "Pa",
+            "Young's modulus of the journal",
+        ),
+        (
+            "contact_journal_poisson_ratio",
+            cp.journal_poisson_ratio,
+            "1",
+            "Poisson's ratio of the journal",
+        ),
+        (
+            "contact_bearing_youngs_modulus",
+            cp.bearing_youngs_modulus,
+            "Pa",
+            "Young's modulus of the bearing",
+        ),
+        (
+            "contact_bearing_poisson_ratio",
+            cp.bearing_poisson_ratio,
+            "1",
+            "Poisson's ratio of the bearing",
+        ),
+        (
+            "contact_restitution",
+            cp.restitution,
+            "1",
+            "coefficient of restitution",
+        ),
+        (
+            "contact_boundary_layer",
+            cp.boundary_layer,
+            "m",
+            "boundary layer h_b: dry contact starts when h_min falls below it",
+        ),
+        (
+            "contact_blend_width",
+            cp.blend_width,
+            "m",
+            "width e0 of the film-to-contact blend",
+        ),
+        (
+            "contact_min_impact_speed",
+            cp.min_impact_speed,
+            "m s-1",
+            "floor on the impact velocity",
+        ),
+    ]
+}
+
+/// One run's group: its attributes, the time coordinates, the body states and the loads, and for
+/// the lubricated joint the journal orbit, the contact events and the film fields.
 fn write_run(
     w: &mut FileWriter,
     file: &h5::File,
@@ -288,10 +317,39 @@ fn write_run(
         .create_group(name)
         .map_err(w.err(format!("group {name}")))?;
     let lubricated = name == LUBRICATED;
-    w.str_attr(&g, "joint", name)?;
-    w.str_attr(&g, "film", if lubricated { &r.case.film_name } else { "" })?;
+    write_run_attributes(w, &g, r, name, s)?;
+    let time = w.coordinate(&g, "time", &s.time, "s", "time from the start of the run")?;
+    let crank = w.variable(&g, "crank_angle", &s.crank_angle_deg, &[&time])?;
+    w.str_attr(&crank, "units", "degree")?;
+    w.str_attr(&crank, "long_name", "crank angle (from +x, not wrapped)")?;
+    let series = Series { g: &g, time: &time };
+    write_body_states(w, &series, s)?;
+    write_loads(w, &series, s, lubricated)?;
+    if !lubricated {
+        return Ok(());
+    }
+    write_orbit(w, &series, r, s)?;
+    write_contact_events(w, &g, &s.contact_events)?;
+    if let Some(ff) = &s.film_fields {
+        w.write_fields(&g, name, &field_snapshots(ff))?;
+    }
+    Ok(())
+}
+
+/// The run group's attributes: joint, film and integrator names and the run's info (NaN where
+/// not defined), with the count of contact onsets.
+fn write_run_attributes(
+    w: &mut FileWriter,
+    g: &h5::Group,
+    r: &MechanismResults,
+    name: &str,
+    s: &MechanismSolution,
+) -> Res<()> {
+    let lubricated = name == LUBRICATED;
+    w.str_attr(g, "joint", name)?;
+    w.str_attr(g, "film", if lubricated { &r.case.film_name } else { "" })?;
     w.str_attr(
-        &g,
+        g,
         "integrator",
         if lubricated {
             &r.case.integrator_name
@@ -300,25 +358,25 @@ fn write_run(
         },
     )?;
     let info = &s.info;
-    int_attr(w, &g, "steps", info.steps as i64)?;
-    int_attr(w, &g, "rejected_steps", info.rejected_steps as i64)?;
-    int_attr(w, &g, "evaluations", info.evaluations as i64)?;
-    int_attr(w, &g, "film_steps", info.film_steps as i64)?;
-    w.f64_attr(&g, "max_joint_force", info.max_joint_force)?;
-    w.f64_attr(&g, "max_crank_moment", info.max_crank_moment)?;
-    w.f64_attr(&g, "max_eccentricity_ratio", info.max_eccentricity_ratio)?;
+    int_attr(w, g, "steps", info.steps as i64)?;
+    int_attr(w, g, "rejected_steps", info.rejected_steps as i64)?;
+    int_attr(w, g, "evaluations", info.evaluations as i64)?;
+    int_attr(w, g, "film_steps", info.film_steps as i64)?;
+    w.f64_attr(g, "max_joint_force", info.max_joint_force)?;
+    w.f64_attr(g, "max_crank_moment", info.max_crank_moment)?;
+    w.f64_attr(g, "max_eccentricity_ratio", info.max_eccentricity_ratio)?;
     w.f64_attr(
-        &g,
+        g,
         "min_film_thickness",
         info.min_film_thickness.unwrap_or(f64::NAN),
     )?;
     w.f64_attr(
-        &g,
+        g,
         "min_film_crank_angle",
         info.min_film_crank_angle_deg.unwrap_or(f64::NAN),
     )?;
     w.f64_attr(
-        &g,
+        g,
         "periodicity_change",
         info.periodicity_change.unwrap_or(f64::NAN),
     )?;
@@ -327,22 +385,41 @@ fn write_run(
         .iter()
         .filter(|e| e.kind == ContactEventKind::Onset)
         .count();
-    int_attr(w, &g, "contact_onsets", onsets as i64)?;
+    int_attr(w, g, "contact_onsets", onsets as i64)
+}
 
-    let time = w.coordinate(&g, "time", &s.time, "s", "time from the start of the run")?;
-    let crank = w.variable(&g, "crank_angle", &s.crank_angle_deg, &[&time])?;
-    w.str_attr(&crank, "units", "degree")?;
-    w.str_attr(&crank, "long_name", "crank angle (from +x, not wrapped)")?;
-    let series = |w: &mut FileWriter, vname: &str, v: &[f64], units: &str, long: &str| {
-        let ds = w.variable(&g, vname, v, &[&time])?;
+/// A run group with its time coordinate: where the `(time)` series go.
+struct Series<'a> {
+    g: &'a h5::Group,
+    time: &'a h5::Dataset,
+}
+
+impl Series<'_> {
+    /// One variable along time, with its units, long name and the crank angle as coordinate.
+    fn write(
+        &self,
+        w: &mut FileWriter,
+        vname: &str,
+        v: &[f64],
+        units: &str,
+        long: &str,
+    ) -> Res<()> {
+        let ds = w.variable(self.g, vname, v, &[self.time])?;
         w.str_attr(&ds, "units", units)?;
         w.str_attr(&ds, "long_name", long)?;
         w.str_attr(&ds, "coordinates", "crank_angle")
-    };
+    }
+}
 
-    // Bodies along (time, body).
+/// `f(i)` at every output sample `i < n`.
+fn column(n: usize, f: impl Fn(usize) -> f64) -> Vec<f64> {
+    (0..n).map(f).collect()
+}
+
+/// The three bodies' positions, angles and velocities along `(time, body)`.
+fn write_body_states(w: &mut FileWriter, series: &Series, s: &MechanismSolution) -> Res<()> {
     let bodies = ["crank".to_string(), "rod".into(), "slider".into()];
-    let body = w.string_coordinate(&g, "body", &bodies, "body of the mechanism")?;
+    let body = w.string_coordinate(series.g, "body", &bodies, "body of the mechanism")?;
     let n = s.time.len();
     type BodyGet = fn(&jbearing_solvers::mechanism::BodyState) -> f64;
     let body_vars: [(&str, &str, &str, BodyGet); 6] = [
@@ -376,39 +453,23 @@ fn write_run(
     ];
     for (vname, units, long, get) in body_vars {
         let a = Array2::from_shape_fn((n, 3), |(i, k)| get(&s.bodies[i][k]));
-        let ds = w.variable_2d(&g, vname, &a, [&time, &body], units, long)?;
+        let ds = w.variable_2d(series.g, vname, &a, [series.time, &body], units, long)?;
         w.str_attr(&ds, "coordinates", "crank_angle")?;
     }
+    Ok(())
+}
 
-    // Loads.
-    let col = |f: &dyn Fn(usize) -> f64| (0..n).map(f).collect::<Vec<f64>>();
+/// The joint, pin, pivot and guide forces and the crank moment along time; for the lubricated
+/// joint also the joint's moment on the rod.
+fn write_loads(
+    w: &mut FileWriter,
+    series: &Series,
+    s: &MechanismSolution,
+    lubricated: bool,
+) -> Res<()> {
+    let n = s.time.len();
     let l = &s.loads;
-    let joint_long = if lubricated {
-        "rod-slider joint force on the rod (journal): film and contact"
-    } else {
-        "rod-slider joint reaction on the rod"
-    };
-    series(
-        w,
-        "joint_force_x",
-        &col(&|i| l[i].rod_slider[0]),
-        "N",
-        &format!("{joint_long}, x"),
-    )?;
-    series(
-        w,
-        "joint_force_y",
-        &col(&|i| l[i].rod_slider[1]),
-        "N",
-        &format!("{joint_long}, y"),
-    )?;
-    series(
-        w,
-        "joint_force_magnitude",
-        &col(&|i| l[i].rod_slider[0].hypot(l[i].rod_slider[1])),
-        "N",
-        &format!("{joint_long}, magnitude"),
-    )?;
+    write_joint_force(w, series, s, lubricated)?;
     for (vname, k, long) in [
         (
             "crank_pin_force_x",
@@ -421,7 +482,7 @@ fn write_run(
             "crank pin A: force on the rod from the crank, y",
         ),
     ] {
-        series(w, vname, &col(&|i| l[i].crank_pin[k]), "N", long)?;
+        series.write(w, vname, &column(n, |i| l[i].crank_pin[k]), "N", long)?;
     }
     for (vname, k, long) in [
         (
@@ -435,94 +496,143 @@ fn write_run(
             "ground pivot O: force on the crank, y",
         ),
     ] {
-        series(w, vname, &col(&|i| l[i].ground_pivot[k]), "N", long)?;
+        series.write(w, vname, &column(n, |i| l[i].ground_pivot[k]), "N", long)?;
     }
-    series(
+    series.write(
         w,
         "guide_normal_force",
-        &col(&|i| l[i].guide_normal),
+        &column(n, |i| l[i].guide_normal),
         "N",
         "guide: normal force on the slider, y",
     )?;
-    series(
+    series.write(
         w,
         "crank_moment",
-        &col(&|i| l[i].crank_moment),
+        &column(n, |i| l[i].crank_moment),
         "N m",
         "driving moment on the crank (counter-clockwise)",
     )?;
-
     if !lubricated {
         return Ok(());
     }
-    series(
+    series.write(
         w,
         "rod_slider_torque",
-        &col(&|i| l[i].rod_slider_torque),
+        &column(n, |i| l[i].rod_slider_torque),
         "N m",
         "rod–slider joint: moment on the rod about the journal centre (film friction torque and \
          dry-contact friction moment where switched on, else 0; counter-clockwise)",
+    )
+}
+
+/// The rod-slider joint's force on the rod along time: components and magnitude.
+fn write_joint_force(
+    w: &mut FileWriter,
+    series: &Series,
+    s: &MechanismSolution,
+    lubricated: bool,
+) -> Res<()> {
+    let n = s.time.len();
+    let l = &s.loads;
+    let joint_long = if lubricated {
+        "rod-slider joint force on the rod (journal): film and contact"
+    } else {
+        "rod-slider joint reaction on the rod"
+    };
+    series.write(
+        w,
+        "joint_force_x",
+        &column(n, |i| l[i].rod_slider[0]),
+        "N",
+        &format!("{joint_long}, x"),
     )?;
+    series.write(
+        w,
+        "joint_force_y",
+        &column(n, |i| l[i].rod_slider[1]),
+        "N",
+        &format!("{joint_long}, y"),
+    )?;
+    series.write(
+        w,
+        "joint_force_magnitude",
+        &column(n, |i| l[i].rod_slider[0].hypot(l[i].rod_slider[1])),
+        "N",
+        &format!("{joint_long}, magnitude"),
+    )
+}
+
+/// The journal orbit of the lubricated joint along time: eccentricity, its ratio and rate, the
+/// minimum film thickness and the contact blend weight.
+fn write_orbit(
+    w: &mut FileWriter,
+    series: &Series,
+    r: &MechanismResults,
+    s: &MechanismSolution,
+) -> Res<()> {
+    let n = s.time.len();
     let c = r
         .case
         .lubricated_joint()
         .map_or(f64::NAN, |j| j.radial_clearance());
     let e = &s.eccentricity;
     let er = &s.eccentricity_rate;
-    series(
+    series.write(
         w,
         "eccentricity_x",
-        &col(&|i| e[i][0]),
+        &column(n, |i| e[i][0]),
         "m",
         "journal centre relative to the bearing centre, x (journal orbit)",
     )?;
-    series(
+    series.write(
         w,
         "eccentricity_y",
-        &col(&|i| e[i][1]),
+        &column(n, |i| e[i][1]),
         "m",
         "journal centre relative to the bearing centre, y (journal orbit)",
     )?;
-    series(
+    series.write(
         w,
         "eccentricity_ratio",
-        &col(&|i| e[i][0].hypot(e[i][1]) / c),
+        &column(n, |i| e[i][0].hypot(e[i][1]) / c),
         "1",
         "eccentricity ratio |e| / c",
     )?;
-    series(
+    series.write(
         w,
         "eccentricity_rate_x",
-        &col(&|i| er[i][0]),
+        &column(n, |i| er[i][0]),
         "m s-1",
         "journal centre velocity relative to the bearing, x",
     )?;
-    series(
+    series.write(
         w,
         "eccentricity_rate_y",
-        &col(&|i| er[i][1]),
+        &column(n, |i| er[i][1]),
         "m s-1",
         "journal centre velocity relative to the bearing, y",
     )?;
-    series(
+    series.write(
         w,
         "min_film_thickness",
         &s.min_film_thickness,
         "m",
         "minimum film thickness h_min = c - |e| (negative: penetration)",
     )?;
-    series(
+    series.write(
         w,
         "contact_weight",
         &s.contact_weight,
         "1",
         "blend weight of the dry contact force (0: film only, 1: contact only)",
-    )?;
+    )
+}
 
-    let ev = &s.contact_events;
+/// The contact onsets and releases along their own `contact_event` dimension (may be empty).
+fn write_contact_events(w: &mut FileWriter, g: &h5::Group, ev: &[ContactEvent]) -> Res<()> {
     let index: Vec<f64> = (0..ev.len()).map(|k| k as f64).collect();
     let dim = w.coordinate(
-        &g,
+        g,
         "contact_event",
         &index,
         "1",
@@ -548,7 +658,7 @@ fn write_run(
             ev.iter().map(|e| e.radial_velocity).collect(),
         ),
     ] {
-        let ds = w.variable(&g, vname, &values, &[&dim])?;
+        let ds = w.variable(g, vname, &values, &[&dim])?;
         w.str_attr(&ds, "units", units)?;
         w.str_attr(&ds, "long_name", long)?;
     }
@@ -560,15 +670,12 @@ fn write_run(
         })
         .collect();
     w.string_variable(
-        &g,
+        g,
         "contact_event_kind",
         &kinds,
         &dim,
         "onset (h_min fell to the boundary layer) or release",
     )?;
-    if let Some(ff) = &s.film_fields {
-        w.write_fields(&g, name, &field_snapshots(ff))?;
-    }
     Ok(())
 }
 

@@ -226,7 +226,43 @@ impl FileWriter {
         }
     }
 
+    /// The whole file: global attributes, geometry, parameters, one group per method, the
+    /// summary, closed forms, input files, the deformable bearing and the VTKHDF dataset.
     fn write_report(&mut self, file: &h5::File, r: &CaseReport, surface: bool) -> Res<()> {
+        self.write_global_attributes(file, r)?;
+        let g = r.geometry;
+        for (v, value) in [
+            (layout::RADIUS, g.radius),
+            (layout::LENGTH, g.length),
+            (layout::RADIAL_CLEARANCE, g.radial_clearance),
+        ] {
+            self.scalar(file, v.name, value, v.units, v.long_name)?;
+        }
+
+        self.write_parameters(file, r)?;
+        for m in &r.methods {
+            self.write_method(file, m)?;
+        }
+        self.write_summary(file, r)?;
+        if let Some(t) = &r.closed_form {
+            self.write_closed_form(file, t)?;
+        }
+        if !r.input_files.is_empty() {
+            self.write_input_files(file, r)?;
+        }
+
+        if let Some(e) = &r.elastic {
+            self.write_elastic(file, e)?;
+        }
+
+        if surface {
+            self.write_vtkhdf(file, r)?;
+        }
+        Ok(())
+    }
+
+    /// The root's attributes: CF conventions, provenance of the run, the methods and warnings.
+    fn write_global_attributes(&mut self, file: &h5::File, r: &CaseReport) -> Res<()> {
         let run = &r.run;
         self.str_attr(
             file,
@@ -290,16 +326,12 @@ impl FileWriter {
                     .map_err(self.err(format!("attribute {name}")))?;
             }
         }
+        Ok(())
+    }
 
-        let g = r.geometry;
-        for (v, value) in [
-            (layout::RADIUS, g.radius),
-            (layout::LENGTH, g.length),
-            (layout::RADIAL_CLEARANCE, g.radial_clearance),
-        ] {
-            self.scalar(file, v.name, value, v.units, v.long_name)?;
-        }
-
+    /// The `parameters/` group: every case parameter as a scalar with its units and long name
+    /// (flags as 0/1 with `flag_values`).
+    fn write_parameters(&mut self, file: &h5::File, r: &CaseReport) -> Res<()> {
         let params = file
             .create_group("parameters")
             .map_err(self.err("group parameters"))?;
@@ -345,31 +377,18 @@ impl FileWriter {
                 self.str_attr(&ds, "flag_meanings", "false true")?;
             }
         }
+        Ok(())
+    }
 
-        for m in &r.methods {
-            self.write_method(file, m)?;
-        }
-        self.write_summary(file, r)?;
-        if let Some(t) = &r.closed_form {
-            self.write_closed_form(file, t)?;
-        }
-        if !r.input_files.is_empty() {
-            self.write_input_files(file, r)?;
-        }
-
+    /// One VTK dataset per file (/VTKHDF): the structure of a deformable bearing, else the film
+    /// surface of the first method with fields.
+    fn write_vtkhdf(&mut self, file: &h5::File, r: &CaseReport) -> Res<()> {
         if let Some(e) = &r.elastic {
-            self.write_elastic(file, e)?;
-        }
-
-        // One VTK dataset per file (/VTKHDF): the structure of a deformable bearing, else the
-        // film surface of the first method with fields.
-        if surface && let Some(e) = &r.elastic {
             vtkhdf::write_bodies(file, &e.bodies).map_err(self.err("VTKHDF shaft and housing"))?;
-        } else if surface
-            && let Some((method, fields)) = r
-                .methods
-                .iter()
-                .find_map(|m| m.fields.as_ref().map(|f| (m.method, f)))
+        } else if let Some((method, fields)) = r
+            .methods
+            .iter()
+            .find_map(|m| m.fields.as_ref().map(|f| (m.method, f)))
         {
             vtkhdf::write_surface(file, &r.geometry, method, fields)
                 .map_err(self.err("VTKHDF surface"))?;
