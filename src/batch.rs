@@ -14,7 +14,7 @@
 //! ```
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -313,45 +313,14 @@ pub fn run_batch(all: &[CaseJob], options: &BatchOptions) -> BatchRun {
     } else {
         ProgressDrawTarget::hidden()
     });
-    let style = ProgressStyle::with_template("{spinner} {prefix:24} {elapsed:>4} {wide_msg}")
-        .expect("static template");
     let observer = ProgressObserver {
         mode: progress,
         multi: multi.clone(),
         started: Instant::now(),
         bars: Mutex::new(Vec::new()),
     };
-    // Cases that repeat an earlier case's name (over the whole batch, every shard) would
-    // overwrite its files, so they fail before any solve, naming the earlier file.
-    let mut first_with_name: std::collections::HashMap<&str, &PathBuf> =
-        std::collections::HashMap::new();
-    let mut duplicate: std::collections::HashMap<usize, PathBuf> = std::collections::HashMap::new();
-    for (k, j) in all.iter().enumerate() {
-        match first_with_name.get(j.name.as_str()) {
-            Some(other) => {
-                duplicate.insert(k, (*other).clone());
-            }
-            None => {
-                first_with_name.insert(&j.name, &j.path);
-            }
-        }
-    }
-    let mut bars = Vec::new();
-    for (_, j) in &todo {
-        let bar = multi.add(ProgressBar::new_spinner());
-        bar.set_style(style.clone());
-        bar.set_prefix(j.name.clone());
-        bar.set_message("queued");
-        if progress == Progress::Bars {
-            bar.enable_steady_tick(Duration::from_millis(200));
-        }
-        bars.push(bar.clone());
-        observer
-            .bars
-            .lock()
-            .expect("progress bars")
-            .push((j.name.clone(), bar));
-    }
+    let duplicate = duplicate_names(all);
+    let bars = start_bars(&todo, &multi, progress, &observer);
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let threads = if jobs == 0 { cores } else { jobs.min(cores) };
     let pool = rayon::ThreadPoolBuilder::new()
@@ -363,28 +332,7 @@ pub fn run_batch(all: &[CaseJob], options: &BatchOptions) -> BatchRun {
             .zip(bars.par_iter())
             .map(|((k, job), bar)| {
                 bar.set_message("reading the case");
-                let result = match duplicate.get(k) {
-                    Some(other) => Err(RunError::DuplicateName {
-                        case: job.name.clone(),
-                        path: job.path.display().to_string(),
-                        other: other.display().to_string(),
-                    }),
-                    None => match crate::mechanism::job_case(job) {
-                        Some(case) => {
-                            let progress = |m: &str| observer.event(&job.name, m.to_string());
-                            case.map_err(RunError::from).and_then(|case| {
-                                run_mechanism_case(&case, out_dir, &progress)
-                                    .map(|o| JobOutcome::Mechanism(Box::new(o)))
-                                    .map_err(|e| RunError::Mechanism(Box::new(e)))
-                            })
-                        }
-                        None => job
-                            .case()
-                            .map_err(RunError::from)
-                            .and_then(|case| run_case(&case, out_dir, limits, &observer))
-                            .map(|o| JobOutcome::Bearing(Box::new(o))),
-                    },
-                };
+                let result = run_job(job, duplicate.get(k), out_dir, limits, &observer);
                 match &result {
                     Ok(o) => {
                         let message = format!("done, {} files", o.files().len());
@@ -409,6 +357,86 @@ pub fn run_batch(all: &[CaseJob], options: &BatchOptions) -> BatchRun {
     BatchRun {
         entries,
         skipped: skipped.into_iter().map(|(_, j)| j.clone()).collect(),
+    }
+}
+
+/// The jobs that repeat an earlier job's name, by index, with the earlier job's file.
+fn duplicate_names(all: &[CaseJob]) -> std::collections::HashMap<usize, PathBuf> {
+    // Cases that repeat an earlier case's name (over the whole batch, every shard) would
+    // overwrite its files, so they fail before any solve, naming the earlier file.
+    let mut first_with_name: std::collections::HashMap<&str, &PathBuf> =
+        std::collections::HashMap::new();
+    let mut duplicate: std::collections::HashMap<usize, PathBuf> = std::collections::HashMap::new();
+    for (k, j) in all.iter().enumerate() {
+        match first_with_name.get(j.name.as_str()) {
+            Some(other) => {
+                duplicate.insert(k, (*other).clone());
+            }
+            None => {
+                first_with_name.insert(&j.name, &j.path);
+            }
+        }
+    }
+    duplicate
+}
+
+/// A spinner per job to do, in the observer's list too (ticking only when bars are drawn).
+fn start_bars(
+    todo: &[(usize, &CaseJob)],
+    multi: &MultiProgress,
+    progress: Progress,
+    observer: &ProgressObserver,
+) -> Vec<ProgressBar> {
+    let style = ProgressStyle::with_template("{spinner} {prefix:24} {elapsed:>4} {wide_msg}")
+        .expect("static template");
+    let mut bars = Vec::new();
+    for (_, j) in todo {
+        let bar = multi.add(ProgressBar::new_spinner());
+        bar.set_style(style.clone());
+        bar.set_prefix(j.name.clone());
+        bar.set_message("queued");
+        if progress == Progress::Bars {
+            bar.enable_steady_tick(Duration::from_millis(200));
+        }
+        bars.push(bar.clone());
+        observer
+            .bars
+            .lock()
+            .expect("progress bars")
+            .push((j.name.clone(), bar));
+    }
+    bars
+}
+
+/// One job: a duplicate name fails before any solve; a mechanism case or a bearing case runs.
+fn run_job(
+    job: &CaseJob,
+    duplicate: Option<&PathBuf>,
+    out_dir: &Path,
+    limits: &Limits,
+    observer: &ProgressObserver,
+) -> Result<JobOutcome, RunError> {
+    match duplicate {
+        Some(other) => Err(RunError::DuplicateName {
+            case: job.name.clone(),
+            path: job.path.display().to_string(),
+            other: other.display().to_string(),
+        }),
+        None => match crate::mechanism::job_case(job) {
+            Some(case) => {
+                let progress = |m: &str| observer.event(&job.name, m.to_string());
+                case.map_err(RunError::from).and_then(|case| {
+                    run_mechanism_case(&case, out_dir, &progress)
+                        .map(|o| JobOutcome::Mechanism(Box::new(o)))
+                        .map_err(|e| RunError::Mechanism(Box::new(e)))
+                })
+            }
+            None => job
+                .case()
+                .map_err(RunError::from)
+                .and_then(|case| run_case(&case, out_dir, limits, observer))
+                .map(|o| JobOutcome::Bearing(Box::new(o))),
+        },
     }
 }
 

@@ -1,5 +1,6 @@
 //! The `jbearing` command line (clap derive). `main.rs` only calls [`main_with`].
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -8,11 +9,14 @@ use std::io::IsTerminal;
 use clap::{Args, Parser, Subcommand};
 
 use crate::batch::{
-    BatchOptions, Manifest, Progress, Shard, collect_cases, run_batch, summary_csv, summary_table,
+    BatchOptions, BatchRun, Manifest, Progress, Shard, collect_cases, run_batch, summary_csv,
+    summary_table,
 };
-use crate::budget::{Limits, estimate, human_bytes, human_seconds};
-use crate::case::Case;
+use crate::budget::{Estimate, Limits, estimate, human_bytes, human_seconds};
 use crate::case::compressor::Compressor;
+use crate::case::mechanism::MechanismCase;
+use crate::case::{Case, CaseError};
+use crate::sweep::CaseJob;
 
 /// Dynamically loaded journal bearings with mass-conserving (JFO) cavitation.
 ///
@@ -284,30 +288,8 @@ fn run_command(a: &RunArgs, quiet: bool) -> ExitCode {
 /// `jbearing batch INPUTS…`: every case (sweeps expanded) of this shard, the summary CSV and
 /// the manifest written atomically; failure when a case or a method failed.
 fn batch_command(a: &BatchArgs, quiet: bool) -> ExitCode {
-    let paths = match collect_cases(&a.inputs) {
-        Ok(p) if !p.is_empty() => p,
-        Ok(_) => {
-            eprintln!("error: no case files (*.toml) in {:?}", a.inputs);
-            return ExitCode::FAILURE;
-        }
-        Err(e) => {
-            eprintln!("error: listing {:?}: {e}", a.inputs);
-            return ExitCode::FAILURE;
-        }
-    };
-    let all = match crate::sweep::expand_all(&paths) {
-        Ok(all) => all,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
-    let shard = match a.shard.as_deref().map(Shard::parse).transpose() {
-        Ok(s) => s.unwrap_or(Shard::ALL),
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::FAILURE;
-        }
+    let Some((all, shard)) = batch_jobs(a) else {
+        return ExitCode::FAILURE;
     };
     let progress = Progress::for_stderr(!a.no_progress && !quiet);
     // Mechanism cases are jobs of the same list (pool, shards, resume, manifest, rows).
@@ -330,36 +312,9 @@ fn batch_command(a: &BatchArgs, quiet: bool) -> ExitCode {
             j.name, j.name
         );
     }
-    let csv = a.out.join(shard.summary_name());
-    let manifest_path = a.out.join(shard.manifest_name());
-    let manifest = Manifest::of(&all, shard, &run);
-    let write_text = |path: &std::path::Path, text: String| {
-        crate::output::write_atomically(path, |tmp| {
-            std::fs::write(tmp, &text).map_err(|source| crate::output::OutputError::Io {
-                action: "writing",
-                path: path.to_path_buf(),
-                source,
-            })
-        })
-        .map_err(|e| e.to_string())
-    };
-    let written = std::fs::create_dir_all(&a.out)
-        .map_err(|e| e.to_string())
-        .and_then(|_| write_text(&csv, summary_csv(entries)))
-        .and_then(|_| {
-            write_text(
-                &manifest_path,
-                serde_json::to_string_pretty(&manifest).expect("a manifest serialises"),
-            )
-        });
-    if let Err(e) = written {
-        eprintln!(
-            "error: writing {} / {}: {e}",
-            csv.display(),
-            manifest_path.display()
-        );
+    let Some(csv) = write_batch_files(&a.out, &all, shard, &run) else {
         return ExitCode::FAILURE;
-    }
+    };
     println!("summary: {}", csv.display());
     let failed = entries.iter().filter(|e| e.result.is_err()).count();
     let method_failed = entries
@@ -375,6 +330,73 @@ fn batch_command(a: &BatchArgs, quiet: bool) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// The cases of `jbearing batch` (case files listed, sweeps expanded) and the shard to run;
+/// `None` when an error was reported.
+fn batch_jobs(a: &BatchArgs) -> Option<(Vec<CaseJob>, Shard)> {
+    let paths = match collect_cases(&a.inputs) {
+        Ok(p) if !p.is_empty() => p,
+        Ok(_) => {
+            eprintln!("error: no case files (*.toml) in {:?}", a.inputs);
+            return None;
+        }
+        Err(e) => {
+            eprintln!("error: listing {:?}: {e}", a.inputs);
+            return None;
+        }
+    };
+    let all = match crate::sweep::expand_all(&paths) {
+        Ok(all) => all,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return None;
+        }
+    };
+    let shard = match a.shard.as_deref().map(Shard::parse).transpose() {
+        Ok(s) => s.unwrap_or(Shard::ALL),
+        Err(e) => {
+            eprintln!("error: {e}");
+            return None;
+        }
+    };
+    Some((all, shard))
+}
+
+/// The shard's summary CSV and manifest, each written atomically: the CSV's path, or `None` when
+/// an error was reported.
+fn write_batch_files(out: &Path, all: &[CaseJob], shard: Shard, run: &BatchRun) -> Option<PathBuf> {
+    let csv = out.join(shard.summary_name());
+    let manifest_path = out.join(shard.manifest_name());
+    let manifest = Manifest::of(all, shard, run);
+    let write_text = |path: &std::path::Path, text: String| {
+        crate::output::write_atomically(path, |tmp| {
+            std::fs::write(tmp, &text).map_err(|source| crate::output::OutputError::Io {
+                action: "writing",
+                path: path.to_path_buf(),
+                source,
+            })
+        })
+        .map_err(|e| e.to_string())
+    };
+    let written = std::fs::create_dir_all(out)
+        .map_err(|e| e.to_string())
+        .and_then(|_| write_text(&csv, summary_csv(&run.entries)))
+        .and_then(|_| {
+            write_text(
+                &manifest_path,
+                serde_json::to_string_pretty(&manifest).expect("a manifest serialises"),
+            )
+        });
+    if let Err(e) = written {
+        eprintln!(
+            "error: writing {} / {}: {e}",
+            csv.display(),
+            manifest_path.display()
+        );
+        return None;
+    }
+    Some(csv)
 }
 
 /// `jbearing merge DIRS… --out FILE`.
@@ -454,126 +476,15 @@ fn synth_loads_command(machine: &Path) -> ExitCode {
 /// `jbearing check`: every case read and checked as `run` would before its solve; the estimated
 /// cost printed beside each; duplicate names, and the output directory when given.
 fn check(cases: &[PathBuf], out: Option<&std::path::Path>, limits: &Limits) -> ExitCode {
-    let mut bad = 0;
-    if let Some(dir) = out {
-        let usable = std::fs::create_dir_all(dir)
-            .and_then(|_| tempfile::NamedTempFile::new_in(dir).map(drop));
-        if let Err(e) = usable {
-            eprintln!(
-                "error: output directory '{}' is not usable: {e}",
-                dir.display()
-            );
-            bad += 1;
-        }
-    }
-    let mut seen: std::collections::HashMap<String, PathBuf> = std::collections::HashMap::new();
+    let mut bad = out.map_or(0, check_out_dir);
+    let mut seen: HashMap<String, PathBuf> = HashMap::new();
     for c in cases {
-        let jobs = match crate::sweep::expand_file(c) {
-            Ok(jobs) => jobs,
+        match crate::sweep::expand_file(c) {
+            Ok(jobs) => bad += check_file(c, &jobs, &mut seen, limits),
             Err(e) => {
                 eprintln!("error: {e}");
                 bad += 1;
-                continue;
             }
-        };
-        let sweep = jobs.iter().any(|j| j.text.is_some());
-        let (mut memory, mut seconds, mut ok) = (0.0f64, 0.0, 0usize);
-        let mut mechanism = false;
-        for job in &jobs {
-            if let Some(m) = crate::mechanism::job_case(job) {
-                mechanism = true;
-                match m {
-                    Ok(case) if seen.contains_key(&case.name) => {
-                        eprintln!(
-                            "error: {}: case name '{}' is already used by {}: their output files \
-                             would overwrite each other in one batch (give each case its own name)",
-                            c.display(),
-                            case.name,
-                            seen[&case.name].display()
-                        );
-                        bad += 1;
-                    }
-                    Ok(case) => {
-                        seen.insert(case.name.clone(), c.clone());
-                        ok += 1;
-                        if !sweep {
-                            println!("{}: ok ({})", c.display(), case.describe());
-                        }
-                    }
-                    Err(e) => {
-                        eprintln!("error: {e}");
-                        bad += 1;
-                    }
-                }
-                continue;
-            }
-            let case = match job.case() {
-                Ok(case) => case,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    bad += 1;
-                    continue;
-                }
-            };
-            if let Some(other) = seen.get(&case.name) {
-                eprintln!(
-                    "error: {}: case name '{}' is already used by {}: their output files would \
-                     overwrite each other in one batch (give each case its own name)",
-                    c.display(),
-                    case.name,
-                    other.display()
-                );
-                bad += 1;
-                continue;
-            }
-            seen.insert(case.name.clone(), c.clone());
-            let budget = match crate::budget::check(&case, limits) {
-                Ok(w) => w,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    bad += 1;
-                    continue;
-                }
-            };
-            for w in case.warnings.iter().chain(&budget) {
-                eprintln!("warning: {w}");
-            }
-            let e = estimate(&case);
-            memory = memory.max(e.memory_bytes);
-            seconds += e.seconds;
-            ok += 1;
-            if !sweep {
-                println!(
-                    "{}: ok (case '{}', {} groove(s), grid {} × {}; estimated {}, {})",
-                    c.display(),
-                    case.name,
-                    case.grooves.len(),
-                    case.n_theta,
-                    case.n_z,
-                    human_bytes(e.memory_bytes),
-                    human_seconds(e.seconds)
-                );
-            }
-        }
-        if sweep && mechanism {
-            let keys: Vec<&str> = jobs[0].parameters.iter().map(|p| p.key.as_str()).collect();
-            println!(
-                "{}: sweep of {} mechanism cases over {} ({ok} ok)",
-                c.display(),
-                jobs.len(),
-                keys.join(", ")
-            );
-        } else if sweep {
-            let keys: Vec<&str> = jobs[0].parameters.iter().map(|p| p.key.as_str()).collect();
-            println!(
-                "{}: sweep of {} cases over {} ({ok} ok; estimated {} each at most, {} in all \
-                 on one core)",
-                c.display(),
-                jobs.len(),
-                keys.join(", "),
-                human_bytes(memory),
-                human_seconds(seconds)
-            );
         }
     }
     if bad > 0 {
@@ -581,4 +492,156 @@ fn check(cases: &[PathBuf], out: Option<&std::path::Path>, limits: &Limits) -> E
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// The output directory can be created and written in: the number of errors reported (0 or 1).
+fn check_out_dir(dir: &Path) -> usize {
+    let usable =
+        std::fs::create_dir_all(dir).and_then(|_| tempfile::NamedTempFile::new_in(dir).map(drop));
+    if let Err(e) = usable {
+        eprintln!(
+            "error: output directory '{}' is not usable: {e}",
+            dir.display()
+        );
+        return 1;
+    }
+    0
+}
+
+/// One case file's cases (each point of a sweep) checked, a line printed per case or one per
+/// sweep: the number of errors reported.
+fn check_file(
+    c: &Path,
+    jobs: &[CaseJob],
+    seen: &mut HashMap<String, PathBuf>,
+    limits: &Limits,
+) -> usize {
+    let sweep = jobs.iter().any(|j| j.text.is_some());
+    let (mut memory, mut seconds, mut ok, mut bad) = (0.0f64, 0.0, 0usize, 0usize);
+    let mut mechanism = false;
+    for job in jobs {
+        if let Some(m) = crate::mechanism::job_case(job) {
+            mechanism = true;
+            if check_mechanism_case(c, m, seen, sweep) {
+                ok += 1;
+            } else {
+                bad += 1;
+            }
+            continue;
+        }
+        match check_case(c, job, seen, limits, sweep) {
+            Some(e) => {
+                memory = memory.max(e.memory_bytes);
+                seconds += e.seconds;
+                ok += 1;
+            }
+            None => bad += 1,
+        }
+    }
+    if sweep && mechanism {
+        let keys: Vec<&str> = jobs[0].parameters.iter().map(|p| p.key.as_str()).collect();
+        println!(
+            "{}: sweep of {} mechanism cases over {} ({ok} ok)",
+            c.display(),
+            jobs.len(),
+            keys.join(", ")
+        );
+    } else if sweep {
+        let keys: Vec<&str> = jobs[0].parameters.iter().map(|p| p.key.as_str()).collect();
+        println!(
+            "{}: sweep of {} cases over {} ({ok} ok; estimated {} each at most, {} in all \
+             on one core)",
+            c.display(),
+            jobs.len(),
+            keys.join(", "),
+            human_bytes(memory),
+            human_seconds(seconds)
+        );
+    }
+    bad
+}
+
+/// A mechanism case: read, and its name not used by an earlier case; `true` when it is good.
+fn check_mechanism_case(
+    c: &Path,
+    m: Result<MechanismCase, CaseError>,
+    seen: &mut HashMap<String, PathBuf>,
+    sweep: bool,
+) -> bool {
+    match m {
+        Ok(case) if seen.contains_key(&case.name) => {
+            eprintln!(
+                "error: {}: case name '{}' is already used by {}: their output files \
+                 would overwrite each other in one batch (give each case its own name)",
+                c.display(),
+                case.name,
+                seen[&case.name].display()
+            );
+            false
+        }
+        Ok(case) => {
+            seen.insert(case.name.clone(), c.to_path_buf());
+            if !sweep {
+                println!("{}: ok ({})", c.display(), case.describe());
+            }
+            true
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            false
+        }
+    }
+}
+
+/// A bearing case: read, its name not used by an earlier case, within the budget; its warnings
+/// printed; its estimated cost when it is good.
+fn check_case(
+    c: &Path,
+    job: &CaseJob,
+    seen: &mut HashMap<String, PathBuf>,
+    limits: &Limits,
+    sweep: bool,
+) -> Option<Estimate> {
+    let case = match job.case() {
+        Ok(case) => case,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return None;
+        }
+    };
+    if let Some(other) = seen.get(&case.name) {
+        eprintln!(
+            "error: {}: case name '{}' is already used by {}: their output files would \
+             overwrite each other in one batch (give each case its own name)",
+            c.display(),
+            case.name,
+            other.display()
+        );
+        return None;
+    }
+    seen.insert(case.name.clone(), c.to_path_buf());
+    let budget = match crate::budget::check(&case, limits) {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return None;
+        }
+    };
+    for w in case.warnings.iter().chain(&budget) {
+        eprintln!("warning: {w}");
+    }
+    let e = estimate(&case);
+    if !sweep {
+        println!(
+            "{}: ok (case '{}', {} groove(s), grid {} × {}; estimated {}, {})",
+            c.display(),
+            case.name,
+            case.grooves.len(),
+            case.n_theta,
+            case.n_z,
+            human_bytes(e.memory_bytes),
+            human_seconds(e.seconds)
+        );
+    }
+    Some(e)
 }

@@ -243,42 +243,10 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeInfo, MergeError> {
         // A re-run of a shard writes the same manifest name: the latest read wins (sorted).
         own.insert(m.shard, m);
     }
-    let find_h5 = |name: &str| {
-        dirs.iter()
-            .map(|d| d.join(format!("{name}.h5")))
-            .find(|p| p.is_file())
-    };
     let mut statuses = Vec::new();
     let mut numbers: Vec<Option<CaseNumbers>> = Vec::new();
     for case in &first.cases {
-        let entry: Option<&ManifestCase> = own
-            .get(&case.shard)
-            .and_then(|m| m.cases.iter().find(|c| c.name == case.name));
-        let (status, nums) = match entry {
-            None => (
-                format!(
-                    "missing: shard {} of {} has no manifest (not run, or its directory not given)",
-                    case.shard, shards
-                ),
-                None,
-            ),
-            Some(c) if c.status == "failed" => (format!("failed: {}", c.message), None),
-            // Mechanism cases have no bearing-case groups to merge: listed, not merged.
-            Some(c) if c.kind == crate::batch::KIND_MECHANISM => match find_h5(&case.name) {
-                Some(_) => (MECHANISM_NOT_MERGED.to_string(), None),
-                None => (
-                    format!("missing: no {}.h5 in the directories given", case.name),
-                    None,
-                ),
-            },
-            Some(_) => match find_h5(&case.name) {
-                Some(p) => ("ok".to_string(), Some(read_case(&p)?)),
-                None => (
-                    format!("missing: no {}.h5 in the directories given", case.name),
-                    None,
-                ),
-            },
-        };
+        let (status, nums) = case_status(case, &own, shards, dirs)?;
         statuses.push(status);
         numbers.push(nums);
     }
@@ -293,13 +261,58 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeInfo, MergeError> {
     })
 }
 
+/// What the merged file says of one case: ok (with its numbers), failed or missing, and why.
+fn case_status(
+    case: &ManifestCase,
+    own: &BTreeMap<usize, &Manifest>,
+    shards: usize,
+    dirs: &[PathBuf],
+) -> Result<(String, Option<CaseNumbers>), MergeError> {
+    let entry: Option<&ManifestCase> = own
+        .get(&case.shard)
+        .and_then(|m| m.cases.iter().find(|c| c.name == case.name));
+    Ok(match entry {
+        None => (
+            format!(
+                "missing: shard {} of {} has no manifest (not run, or its directory not given)",
+                case.shard, shards
+            ),
+            None,
+        ),
+        Some(c) if c.status == "failed" => (format!("failed: {}", c.message), None),
+        // Mechanism cases have no bearing-case groups to merge: listed, not merged.
+        Some(c) if c.kind == crate::batch::KIND_MECHANISM => match find_h5(dirs, &case.name) {
+            Some(_) => (MECHANISM_NOT_MERGED.to_string(), None),
+            None => (
+                format!("missing: no {}.h5 in the directories given", case.name),
+                None,
+            ),
+        },
+        Some(_) => match find_h5(dirs, &case.name) {
+            Some(p) => ("ok".to_string(), Some(read_case(&p)?)),
+            None => (
+                format!("missing: no {}.h5 in the directories given", case.name),
+                None,
+            ),
+        },
+    })
+}
+
+/// The first `NAME.h5` among `dirs`.
+fn find_h5(dirs: &[PathBuf], name: &str) -> Option<PathBuf> {
+    dirs.iter()
+        .map(|d| d.join(format!("{name}.h5")))
+        .find(|p| p.is_file())
+}
+
+/// The merged file: every case's status, swept keys, summary rows and series along `case`
+/// (NaN where a case has no value).
 fn write_merged(
     out: &Path,
     cases: &[ManifestCase],
     statuses: &[String],
     numbers: &[Option<CaseNumbers>],
 ) -> Result<(), MergeError> {
-    let n = cases.len();
     // The union of summary rows and series over the cases, with the first units seen.
     let mut rows: BTreeMap<&str, (&str, &str)> = BTreeMap::new();
     let mut series: BTreeMap<(&str, &str), (&str, &str)> = BTreeMap::new();
@@ -338,80 +351,127 @@ fn write_merged(
             &format!("jbearing {} merge", env!("CARGO_PKG_VERSION")),
         )?;
         let root = file.as_group().map_err(w.err("root group"))?;
-        let names: Vec<String> = cases.iter().map(|c| c.name.clone()).collect();
-        let case = w.string_coordinate(&root, "case", &names, "case name")?;
-        // CF auxiliary coordinates: xarray makes the swept keys coordinates of every variable
-        // along `case`, so `.set_xindex("radial_clearance_m").sel(radial_clearance_m=…)` works.
-        let coordinates = keys
-            .iter()
-            .map(|k| k.rsplit('.').next().unwrap_or(k))
-            .collect::<Vec<_>>()
-            .join(" ");
-        let status = w.string_variable(
-            &root,
-            "status",
-            statuses,
-            &case,
-            "ok, failed: why, or missing: why",
-        )?;
-        if !coordinates.is_empty() {
-            w.str_attr(&status, "coordinates", &coordinates)?;
-        }
-        for (k, key) in keys.iter().enumerate() {
-            let short = key.rsplit('.').next().unwrap_or(key);
-            let values: Vec<f64> = cases
-                .iter()
-                .map(|c| c.parameters.get(k).map_or(f64::NAN, |p| p.1))
-                .collect();
-            let ds = w.variable(&root, short, &values, &[&case])?;
-            w.str_attr(&ds, "long_name", &format!("swept case-file key {key}"))?;
-            w.str_attr(&ds, "sweep_key", key)?;
-            w.str_attr(&ds, "units", "as in the case file (the key's suffix)")?;
-        }
+        let (case, coordinates) = write_cases(&mut w, &root, cases, statuses, &keys)?;
         let labels: Vec<String> = Method::ALL.iter().map(|m| m.as_str().to_owned()).collect();
         let sm = crate::output::layout::SOLUTION_METHOD;
         let method = w.string_coordinate(&root, sm.name, &labels, sm.long_name)?;
-        for (name, (units, long)) in &rows {
-            let mut a = Array2::from_elem((n, 2), f64::NAN);
-            for (i, c) in numbers.iter().enumerate() {
-                if let Some((_, _, v)) = c.as_ref().and_then(|c| c.summary.get(*name)) {
-                    a[[i, 0]] = v[0];
-                    a[[i, 1]] = v[1];
-                }
-            }
-            let ds = w.variable_2d(&root, name, &a, [&case, &method], units, long)?;
-            if !coordinates.is_empty() {
-                w.str_attr(&ds, "coordinates", &coordinates)?;
-            }
-        }
+        write_summary_rows(
+            &mut w,
+            &root,
+            &rows,
+            numbers,
+            [&case, &method],
+            &coordinates,
+        )?;
         if !crank.is_empty() {
-            let ca = crate::output::layout::CRANK_ANGLE;
-            let angle = w.coordinate(&root, ca.name, &crank, ca.units, ca.long_name)?;
-            for ((m, s), (units, long)) in &series {
-                let mut a = Array2::from_elem((n, crank.len()), f64::NAN);
-                for (i, c) in numbers.iter().enumerate() {
-                    if let Some((_, _, angles, v)) = c
-                        .as_ref()
-                        .and_then(|c| c.series.get(&(m.to_string(), s.to_string())))
-                        && angles == &crank
-                    {
-                        a.row_mut(i).assign(&ndarray::ArrayView1::from(&v[..]));
-                    }
-                }
-                let ds = w.variable_2d(
-                    &root,
-                    &format!("{m}_{s}"),
-                    &a,
-                    [&case, &angle],
-                    units,
-                    &format!("{m}: {long}"),
-                )?;
-                if !coordinates.is_empty() {
-                    w.str_attr(&ds, "coordinates", &coordinates)?;
-                }
-            }
+            write_series(&mut w, &root, &series, numbers, &crank, &case, &coordinates)?;
         }
         file.close().map_err(w.err("closing the file"))
     })?;
+    Ok(())
+}
+
+/// The `case` coordinate, each case's status and the swept keys' values; the swept keys' short
+/// names as CF auxiliary coordinates.
+fn write_cases(
+    w: &mut FileWriter,
+    root: &h5::Group,
+    cases: &[ManifestCase],
+    statuses: &[String],
+    keys: &[String],
+) -> Result<(h5::Dataset, String), OutputError> {
+    let names: Vec<String> = cases.iter().map(|c| c.name.clone()).collect();
+    let case = w.string_coordinate(root, "case", &names, "case name")?;
+    // CF auxiliary coordinates: xarray makes the swept keys coordinates of every variable
+    // along `case`, so `.set_xindex("radial_clearance_m").sel(radial_clearance_m=…)` works.
+    let coordinates = keys
+        .iter()
+        .map(|k| k.rsplit('.').next().unwrap_or(k))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let status = w.string_variable(
+        root,
+        "status",
+        statuses,
+        &case,
+        "ok, failed: why, or missing: why",
+    )?;
+    if !coordinates.is_empty() {
+        w.str_attr(&status, "coordinates", &coordinates)?;
+    }
+    for (k, key) in keys.iter().enumerate() {
+        let short = key.rsplit('.').next().unwrap_or(key);
+        let values: Vec<f64> = cases
+            .iter()
+            .map(|c| c.parameters.get(k).map_or(f64::NAN, |p| p.1))
+            .collect();
+        let ds = w.variable(root, short, &values, &[&case])?;
+        w.str_attr(&ds, "long_name", &format!("swept case-file key {key}"))?;
+        w.str_attr(&ds, "sweep_key", key)?;
+        w.str_attr(&ds, "units", "as in the case file (the key's suffix)")?;
+    }
+    Ok((case, coordinates))
+}
+
+/// Each summary row over (case, method).
+fn write_summary_rows(
+    w: &mut FileWriter,
+    root: &h5::Group,
+    rows: &BTreeMap<&str, (&str, &str)>,
+    numbers: &[Option<CaseNumbers>],
+    dims: [&h5::Dataset; 2],
+    coordinates: &str,
+) -> Result<(), OutputError> {
+    for (name, (units, long)) in rows {
+        let mut a = Array2::from_elem((numbers.len(), 2), f64::NAN);
+        for (i, c) in numbers.iter().enumerate() {
+            if let Some((_, _, v)) = c.as_ref().and_then(|c| c.summary.get(*name)) {
+                a[[i, 0]] = v[0];
+                a[[i, 1]] = v[1];
+            }
+        }
+        let ds = w.variable_2d(root, name, &a, dims, units, long)?;
+        if !coordinates.is_empty() {
+            w.str_attr(&ds, "coordinates", coordinates)?;
+        }
+    }
+    Ok(())
+}
+
+/// Each series over (case, crank angle); a case sampled at other crank angles stays NaN.
+fn write_series(
+    w: &mut FileWriter,
+    root: &h5::Group,
+    series: &BTreeMap<(&str, &str), (&str, &str)>,
+    numbers: &[Option<CaseNumbers>],
+    crank: &[f64],
+    case: &h5::Dataset,
+    coordinates: &str,
+) -> Result<(), OutputError> {
+    let ca = crate::output::layout::CRANK_ANGLE;
+    let angle = w.coordinate(root, ca.name, crank, ca.units, ca.long_name)?;
+    for ((m, s), (units, long)) in series {
+        let mut a = Array2::from_elem((numbers.len(), crank.len()), f64::NAN);
+        for (i, c) in numbers.iter().enumerate() {
+            if let Some((_, _, angles, v)) = c
+                .as_ref()
+                .and_then(|c| c.series.get(&(m.to_string(), s.to_string())))
+                && angles == crank
+            {
+                a.row_mut(i).assign(&ndarray::ArrayView1::from(&v[..]));
+            }
+        }
+        let ds = w.variable_2d(
+            root,
+            &format!("{m}_{s}"),
+            &a,
+            [case, &angle],
+            units,
+            &format!("{m}: {long}"),
+        )?;
+        if !coordinates.is_empty() {
+            w.str_attr(&ds, "coordinates", coordinates)?;
+        }
+    }
     Ok(())
 }

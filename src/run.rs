@@ -29,13 +29,15 @@ use jbearing_solvers::reynolds::{
     GridParams, OperatingConditions, ReynoldsParams, ReynoldsSolver, SupplyModel,
 };
 use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
+use jbearing_solvers::viscosity::ViscosityModel;
 use ndarray::Array3;
 
 use crate::budget::{self, BudgetError, Limits};
 use crate::case::{Case, CaseError, CaseWarning, MobilityModelChoice, RigorousFilm};
 use crate::output::{
-    CaseReport, ElasticReport, Field, FieldSnapshots, Method, MethodResult, OutputError, Parameter,
-    ParameterValue, Reduction, ReportWarning, RunInfo, Series, SummaryRow, names, standard_writers,
+    CaseReport, ClosedFormTable, ElasticReport, Field, FieldSnapshots, Method, MethodResult,
+    OutputError, Parameter, ParameterValue, Reduction, ReportWarning, RunInfo, Series, SummaryRow,
+    names, standard_writers,
 };
 
 /// Progress of one case, for progress bars and logs. Every method has a default that does
@@ -1064,49 +1066,10 @@ fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> 
         },
     ];
     if let Some(model) = &case.viscosity_model {
-        // The film's temperature and viscosity as the Reynolds solver evaluates them per node
-        // (reynolds `prepare`): T averaged over the node's cell, from the first groove's centre
-        // (else h_max) in the direction of the surface motion; μ = μ₀(T) exp(α (p − p_cav)).
-        let history = CaseHistory::new(case);
-        let d_theta = std::f64::consts::TAU / nt as f64;
-        let mut temperature = Array3::zeros((k, nt, nz));
-        let mut viscosity = Array3::zeros((k, nt, nz));
-        for (i, s) in snaps.iter().enumerate() {
-            let t = grid_time[place(s.step_index)];
-            let eps = sol.steps.get(s.step_index)?.eccentricity_ratio;
-            let supply = case
-                .grooves
-                .first()
-                .map_or((-eps[1]).atan2(-eps[0]), |g| g.center_angle);
-            let sign = if history.journal_speed(t) - history.bearing_speed(t) < 0.0 {
-                -1.0
-            } else {
-                1.0
-            };
-            for it in 0..nt {
-                let th = d_theta * it as f64;
-                let temp = model
-                    .temperature
-                    .cell_average(th, 0.5 * d_theta, supply, sign);
-                for jz in 0..nz {
-                    temperature[[i, it, jz]] = temp;
-                    let p = pressure[[i, it, jz]] - case.cavitation_pressure;
-                    viscosity[[i, it, jz]] = model.at_cell(th, 0.5 * d_theta, supply, sign, p);
-                }
-            }
-        }
-        fields.push(Field {
-            name: names::TEMPERATURE.into(),
-            long_name: "film temperature (the case's temperature profile)".into(),
-            units: "degC".into(),
-            values: temperature,
-        });
-        fields.push(Field {
-            name: names::VISCOSITY.into(),
-            long_name: "film viscosity mu0(T) exp(alpha (p - p_cav))".into(),
-            units: "Pa s".into(),
-            values: viscosity,
-        });
+        let time_of = |step: usize| grid_time[place(step)];
+        fields.extend(thermal_fields(
+            case, model, sol, &snaps, &pressure, time_of,
+        )?);
     }
     Some(FieldSnapshots {
         time: snaps
@@ -1128,6 +1091,62 @@ fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> 
             .filter(|z| z.len() == nz)?,
         fields,
     })
+}
+
+/// Film temperature and viscosity at each snapshot, as the Reynolds solver evaluates them per
+/// node (reynolds `prepare`): T averaged over the node's cell, from the first groove's centre
+/// (else h_max) in the direction of the surface motion; μ = μ₀(T) exp(α (p − p_cav)).
+fn thermal_fields(
+    case: &Case,
+    model: &ViscosityModel,
+    sol: &InverseSolution,
+    snaps: &[&jbearing_solvers::inverse::FieldSnapshot],
+    pressure: &Array3<f64>,
+    time_of: impl Fn(usize) -> f64,
+) -> Option<[Field; 2]> {
+    let (k, nt, nz) = pressure.dim();
+    let history = CaseHistory::new(case);
+    let d_theta = std::f64::consts::TAU / nt as f64;
+    let mut temperature = Array3::zeros((k, nt, nz));
+    let mut viscosity = Array3::zeros((k, nt, nz));
+    for (i, s) in snaps.iter().enumerate() {
+        let t = time_of(s.step_index);
+        let eps = sol.steps.get(s.step_index)?.eccentricity_ratio;
+        let supply = case
+            .grooves
+            .first()
+            .map_or((-eps[1]).atan2(-eps[0]), |g| g.center_angle);
+        let sign = if history.journal_speed(t) - history.bearing_speed(t) < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        for it in 0..nt {
+            let th = d_theta * it as f64;
+            let temp = model
+                .temperature
+                .cell_average(th, 0.5 * d_theta, supply, sign);
+            for jz in 0..nz {
+                temperature[[i, it, jz]] = temp;
+                let p = pressure[[i, it, jz]] - case.cavitation_pressure;
+                viscosity[[i, it, jz]] = model.at_cell(th, 0.5 * d_theta, supply, sign, p);
+            }
+        }
+    }
+    Some([
+        Field {
+            name: names::TEMPERATURE.into(),
+            long_name: "film temperature (the case's temperature profile)".into(),
+            units: "degC".into(),
+            values: temperature,
+        },
+        Field {
+            name: names::VISCOSITY.into(),
+            long_name: "film viscosity mu0(T) exp(alpha (p - p_cav))".into(),
+            units: "Pa s".into(),
+            values: viscosity,
+        },
+    ])
 }
 
 /// The case's load, with the crank angle of its table, as the solvers' periodic load.
@@ -1266,21 +1285,38 @@ fn check_model(m: &dyn MobilityModel, ld: f64) {
     debug_assert!((m.length_to_diameter() - ld).abs() <= 1e-9 * ld);
 }
 
+/// The mobility method's result: its orbit's series on the crank grid, and its solver info.
 fn mobility_result(
     case: &Case,
     orbit: &OrbitInfo,
     model_name: &str,
     bearing: &MobilityParams,
 ) -> MethodResult {
-    let c = case.radial_clearance;
-    let cycle = case.cycle_deg;
     // The orbit's samples run from 0 to the full cycle; the last repeats the first of the
     // periodic orbit and is dropped (the shared crank grid, see `crank_grid`).
     let n = orbit.time.len().saturating_sub(1).max(1);
     let (time, crank) = crank_grid(case, n);
+    let series = mobility_series(case, orbit, &crank);
+    MethodResult {
+        period: Some(case.period()),
+        method: Method::Mobility,
+        time,
+        crank_angle: crank,
+        series,
+        fields: None,
+        solver_info: mobility_solver_info(orbit, model_name, bearing),
+    }
+}
+
+/// Load, feed pressure, journal centre and the closed-form performance at the orbit's first
+/// `crank.len()` samples.
+fn mobility_series(case: &Case, orbit: &OrbitInfo, crank: &[f64]) -> Vec<Series> {
+    let c = case.radial_clearance;
+    let cycle = case.cycle_deg;
+    let n = crank.len();
     let perf = &orbit.performance;
     let col = |f: &dyn Fn(usize) -> f64| (0..n).map(f).collect::<Vec<f64>>();
-    let series = vec![
+    vec![
         Series::new(
             names::LOAD_X,
             "load on the journal, x",
@@ -1347,48 +1383,48 @@ fn mobility_result(
             "W",
             col(&|i| perf[i].power_loss),
         ),
-    ];
-    MethodResult {
-        period: Some(case.period()),
-        method: Method::Mobility,
-        time,
-        crank_angle: crank,
-        series,
-        fields: None,
-        solver_info: vec![
-            ("model".into(), ParameterValue::Text(model_name.into())),
-            (
-                "cycles".into(),
-                ParameterValue::Integer(orbit.cycles as i64),
+    ]
+}
+
+/// Model, cycles, step counts, ω̄ and the speeds the orbit was solved with.
+fn mobility_solver_info(
+    orbit: &OrbitInfo,
+    model_name: &str,
+    bearing: &MobilityParams,
+) -> Vec<(String, ParameterValue)> {
+    vec![
+        ("model".into(), ParameterValue::Text(model_name.into())),
+        (
+            "cycles".into(),
+            ParameterValue::Integer(orbit.cycles as i64),
+        ),
+        (
+            "periodicity_change".into(),
+            ParameterValue::Number(orbit.periodicity_change),
+        ),
+        (
+            "rhs_evaluations".into(),
+            ParameterValue::Integer(orbit.rhs_evaluations as i64),
+        ),
+        (
+            "accepted_steps".into(),
+            ParameterValue::Integer(orbit.accepted_steps as i64),
+        ),
+        (
+            "rejected_steps".into(),
+            ParameterValue::Integer(orbit.rejected_steps as i64),
+        ),
+        (
+            "omega_bar".into(),
+            ParameterValue::Number(bearing.omega_bar()),
+        ),
+        (
+            "speeds".into(),
+            ParameterValue::Text(
+                "constant: cycle means of the case's journal and bearing speeds".into(),
             ),
-            (
-                "periodicity_change".into(),
-                ParameterValue::Number(orbit.periodicity_change),
-            ),
-            (
-                "rhs_evaluations".into(),
-                ParameterValue::Integer(orbit.rhs_evaluations as i64),
-            ),
-            (
-                "accepted_steps".into(),
-                ParameterValue::Integer(orbit.accepted_steps as i64),
-            ),
-            (
-                "rejected_steps".into(),
-                ParameterValue::Integer(orbit.rejected_steps as i64),
-            ),
-            (
-                "omega_bar".into(),
-                ParameterValue::Number(bearing.omega_bar()),
-            ),
-            (
-                "speeds".into(),
-                ParameterValue::Text(
-                    "constant: cycle means of the case's journal and bearing speeds".into(),
-                ),
-            ),
-        ],
-    }
+        ),
+    ]
 }
 
 /// The one attitude angle of the result files, with its reference direction.
@@ -1642,9 +1678,77 @@ fn solve_case_with(
 ) -> Result<CaseReport, RunError> {
     let started = now_utc();
     let t0 = Instant::now();
-    let mut methods = Vec::new();
     let mut failures = Vec::new();
     let mut parameters = case.parameters();
+    let methods = run_methods(
+        case,
+        observer,
+        rigorous,
+        mobility,
+        &mut parameters,
+        &mut failures,
+    );
+    // The deformable bearing beside the methods; a case that asks only for it fails with it.
+    let elastic = match run_elastic(case) {
+        None => None,
+        Some(Ok(r)) => Some(r),
+        Some(Err(err)) if methods.is_empty() && failures.is_empty() => return Err(err),
+        Some(Err(err)) => {
+            tracing::error!(case = %case.name, "elastic bearing failed: {err}");
+            parameters.push(Parameter::text(
+                ELASTIC_STATUS,
+                &format!("failed: {err}"),
+                "why the elastic group is absent from this file",
+            ));
+            failures.push(err);
+            None
+        }
+    };
+    if methods.is_empty() && elastic.is_none() {
+        return Err(match failures.len() {
+            0 => RunError::NoMethod {
+                case: case.name.clone(),
+            },
+            1 => failures.remove(0),
+            _ => RunError::AllMethodsFailed {
+                case: case.name.clone(),
+                messages: failures.iter().map(ToString::to_string).collect(),
+            },
+        });
+    }
+    let summary = summary_rows(&methods);
+    let closed_form = closed_form_table(case, &methods);
+    Ok(CaseReport {
+        case_name: case.name.clone(),
+        case_text: case.text.clone(),
+        // Absolute, so that the file says where the case was wherever the command ran.
+        case_path: case
+            .path
+            .as_ref()
+            .map(|p| std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())),
+        input_files: case.input_files.clone(),
+        geometry: case.geometry(),
+        parameters,
+        run: RunInfo::for_this_build(t0.elapsed().as_secs_f64(), &started),
+        methods,
+        summary,
+        closed_form,
+        elastic,
+        warnings: Vec::new(),
+    })
+}
+
+/// The rigorous and mobility methods the case asks for, each solved by its solver; a failed
+/// one is logged, its error kept in `failures` and its status added to `parameters`.
+fn run_methods(
+    case: &Case,
+    observer: &dyn RunObserver,
+    rigorous: MethodSolver,
+    mobility: MethodSolver,
+    parameters: &mut Vec<Parameter>,
+    failures: &mut Vec<RunError>,
+) -> Vec<MethodResult> {
+    let mut methods = Vec::new();
     let requested = [
         (
             case.methods.rigorous,
@@ -1678,35 +1782,11 @@ fn solve_case_with(
             }
         }
     }
-    // The deformable bearing beside the methods; a case that asks only for it fails with it.
-    let elastic = match run_elastic(case) {
-        None => None,
-        Some(Ok(r)) => Some(r),
-        Some(Err(err)) if methods.is_empty() && failures.is_empty() => return Err(err),
-        Some(Err(err)) => {
-            tracing::error!(case = %case.name, "elastic bearing failed: {err}");
-            parameters.push(Parameter::text(
-                ELASTIC_STATUS,
-                &format!("failed: {err}"),
-                "why the elastic group is absent from this file",
-            ));
-            failures.push(err);
-            None
-        }
-    };
-    if methods.is_empty() && elastic.is_none() {
-        return Err(match failures.len() {
-            0 => RunError::NoMethod {
-                case: case.name.clone(),
-            },
-            1 => failures.remove(0),
-            _ => RunError::AllMethodsFailed {
-                case: case.name.clone(),
-                messages: failures.iter().map(ToString::to_string).collect(),
-            },
-        });
-    }
-    let summary = summary_rows(&methods);
+    methods
+}
+
+/// The closed-form table of the report (when the case asks for closed forms).
+fn closed_form_table(case: &Case, methods: &[MethodResult]) -> Option<ClosedFormTable> {
     // With a heat balance the closed forms take the effective temperature the methods found
     // (the rigorous one's when it ran), not the supply temperature.
     let balanced = case.heat_balance.as_ref().and_then(|_| {
@@ -1717,28 +1797,10 @@ fn solve_case_with(
                 .and_then(|r| r.info_number(heat::EFFECTIVE_TEMPERATURE))
         })
     });
-    let closed_form = match balanced {
-        Some(t) => crate::closed_form_report::report_table(&case.at_film_temperature(t), &methods),
-        None => crate::closed_form_report::report_table(case, &methods),
-    };
-    Ok(CaseReport {
-        case_name: case.name.clone(),
-        case_text: case.text.clone(),
-        // Absolute, so that the file says where the case was wherever the command ran.
-        case_path: case
-            .path
-            .as_ref()
-            .map(|p| std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())),
-        input_files: case.input_files.clone(),
-        geometry: case.geometry(),
-        parameters,
-        run: RunInfo::for_this_build(t0.elapsed().as_secs_f64(), &started),
-        methods,
-        summary,
-        closed_form,
-        elastic,
-        warnings: Vec::new(),
-    })
+    match balanced {
+        Some(t) => crate::closed_form_report::report_table(&case.at_film_temperature(t), methods),
+        None => crate::closed_form_report::report_table(case, methods),
+    }
 }
 
 /// Read, solve and write one case into `out_dir` (created if missing). The case is refused

@@ -212,6 +212,15 @@ fn sweep_points(
     path: &Path,
     sweep: &toml::Table,
 ) -> Result<Vec<Vec<(String, toml::Value)>>, CaseError> {
+    let (combine, axes) = sweep_axes(path, sweep)?;
+    combine_axes(path, combine, &axes)
+}
+
+/// Each swept key with its values, in key order.
+type Axes = Vec<(String, Vec<toml::Value>)>;
+
+/// The sweep table checked: how to combine (`factorial` or `zip`) and each swept key's values.
+fn sweep_axes<'a>(path: &Path, sweep: &'a toml::Table) -> Result<(&'a str, Axes), CaseError> {
     for key in sweep.keys() {
         if key != "combine" && key != "values" {
             return Err(invalid(
@@ -249,7 +258,7 @@ fn sweep_points(
             "sweeps no key",
         ));
     }
-    let mut axes: Vec<(String, Vec<toml::Value>)> = Vec::new();
+    let mut axes: Axes = Vec::new();
     for (key, spec) in values {
         let here = format!("{SWEEP_TABLE}.values.{key}");
         if key == "name" || key.starts_with(&format!("{SWEEP_TABLE}.")) {
@@ -258,6 +267,16 @@ fn sweep_points(
         let list = axis_values(spec).map_err(|m| invalid(path, &here, m))?;
         axes.push((key.clone(), list));
     }
+    Ok((combine, axes))
+}
+
+/// The points of `axes` combined: the i-th values of each (`zip`, all of one length) or every
+/// combination (`factorial`, the last key varying fastest).
+fn combine_axes(
+    path: &Path,
+    combine: &str,
+    axes: &[(String, Vec<toml::Value>)],
+) -> Result<Vec<Vec<(String, toml::Value)>>, CaseError> {
     match combine {
         "zip" => {
             let n = axes[0].1.len();
@@ -282,7 +301,7 @@ fn sweep_points(
         }
         _ => {
             let mut points: Vec<Vec<(String, toml::Value)>> = vec![Vec::new()];
-            for (key, list) in &axes {
+            for (key, list) in axes {
                 points = points
                     .into_iter()
                     .flat_map(|p| {

@@ -340,7 +340,19 @@ impl Case {
 
     /// Resolved parameters, for the report.
     pub fn parameters(&self) -> Vec<Parameter> {
-        let mut p = vec![
+        let mut p = self.bearing_parameters();
+        p.extend(self.solver_parameters());
+        self.push_viscosity_origin(&mut p);
+        self.push_grooves(&mut p);
+        if let Some(e) = &self.elastic {
+            push_elastic(&mut p, e, self.radius);
+        }
+        p
+    }
+
+    /// Geometry, lubricant constants, the cycle and the mean speeds.
+    fn bearing_parameters(&self) -> Vec<Parameter> {
+        vec![
             Parameter::number("radius", self.radius, "m", "bearing (journal) radius R"),
             Parameter::number("length", self.length, "m", "bearing length L"),
             Parameter::number(
@@ -354,8 +366,8 @@ impl Case {
                 self.viscosity,
                 "Pa s",
                 "dynamic viscosity (with a Vogel law: at the mean film temperature; with a heat \
-                 balance: at the supply temperature, each method reporting its own \
-                 effective_viscosity)",
+             balance: at the supply temperature, each method reporting its own \
+             effective_viscosity)",
             ),
             Parameter::number(
                 "bulk_modulus",
@@ -400,6 +412,12 @@ impl Case {
                 "rad/s",
                 "cycle mean of the bearing speed (fixed frame)",
             ),
+        ]
+    }
+
+    /// Grid and solver options.
+    fn solver_parameters(&self) -> Vec<Parameter> {
+        vec![
             Parameter::integer("n_theta", self.n_theta as i64, "grid nodes around"),
             Parameter::integer("n_z", self.n_z as i64, "grid nodes along"),
             Parameter::integer(
@@ -442,7 +460,12 @@ impl Case {
                 self.solver.time_scheme.name(),
                 "time discretization of the rigorous film (bdf2, backward_euler, crank_nicolson)",
             ),
-        ];
+        ]
+    }
+
+    /// Where the viscosity comes from: a named oil, a heat balance or a Vogel law with its
+    /// film temperatures.
+    fn push_viscosity_origin(&self, p: &mut Vec<Parameter>) {
         if let Some(oil) = &self.oil {
             p.push(Parameter::text(
                 "oil",
@@ -451,41 +474,10 @@ impl Case {
             ));
         }
         if let Some(h) = &self.heat_balance {
-            let hp = &h.params;
-            push_vogel(&mut p, &h.vogel);
-            p.push(Parameter::number(
-                "supply_temperature",
-                hp.supply_temperature,
-                "degC",
-                "oil supply temperature T_in of the heat balance",
-            ));
-            p.push(Parameter::number(
-                "heat_to_housing_and_shaft",
-                hp.heat_to_structure,
-                "1",
-                "share of the power loss conducted away through housing and shaft",
-            ));
-            p.push(Parameter::number(
-                "volumetric_heat_capacity",
-                hp.volumetric_heat_capacity,
-                "J m-3 K-1",
-                "rho c_p of the oil",
-            ));
-            p.push(Parameter::number(
-                "pressure_viscosity_coefficient",
-                h.pressure_coefficient,
-                "Pa-1",
-                "Barus alpha of the rigorous film (the mobility method and closed forms take mu(T_eff))",
-            ));
-            p.push(Parameter::number(
-                "heat_balance_tolerance",
-                hp.tolerance,
-                "K",
-                "tolerance on |T_balance - T_eff|",
-            ));
+            push_heat_balance(p, h);
         }
         if let Some(m) = &self.viscosity_model {
-            push_vogel(&mut p, &m.vogel);
+            push_vogel(p, &m.vogel);
             p.push(Parameter::number(
                 "pressure_viscosity_coefficient",
                 m.pressure_coefficient,
@@ -517,6 +509,10 @@ impl Case {
                 }
             }
         }
+    }
+
+    /// Centre, length and width of each groove.
+    fn push_grooves(&self, p: &mut Vec<Parameter>) {
         for (i, g) in self.grooves.iter().enumerate() {
             p.push(Parameter::number(
                 &format!("groove{i}_center_angle"),
@@ -543,11 +539,43 @@ impl Case {
                 "groove width along",
             ));
         }
-        if let Some(e) = &self.elastic {
-            push_elastic(&mut p, e, self.radius);
-        }
-        p
     }
+}
+
+/// The `[heat_balance]` parameters: the Vogel law and the balance's constants.
+fn push_heat_balance(p: &mut Vec<Parameter>, h: &CaseHeatBalance) {
+    let hp = &h.params;
+    push_vogel(p, &h.vogel);
+    p.push(Parameter::number(
+        "supply_temperature",
+        hp.supply_temperature,
+        "degC",
+        "oil supply temperature T_in of the heat balance",
+    ));
+    p.push(Parameter::number(
+        "heat_to_housing_and_shaft",
+        hp.heat_to_structure,
+        "1",
+        "share of the power loss conducted away through housing and shaft",
+    ));
+    p.push(Parameter::number(
+        "volumetric_heat_capacity",
+        hp.volumetric_heat_capacity,
+        "J m-3 K-1",
+        "rho c_p of the oil",
+    ));
+    p.push(Parameter::number(
+        "pressure_viscosity_coefficient",
+        h.pressure_coefficient,
+        "Pa-1",
+        "Barus alpha of the rigorous film (the mobility method and closed forms take mu(T_eff))",
+    ));
+    p.push(Parameter::number(
+        "heat_balance_tolerance",
+        hp.tolerance,
+        "K",
+        "tolerance on |T_balance - T_eff|",
+    ));
 }
 
 /// The `[elastic]` parameters as resolved (the layer counts the mesh gets).
@@ -758,85 +786,14 @@ impl<'a> Ctx<'a> {
             let line = e.position().map_or(1, |p| p.line().max(1) as usize);
             csv_err(line, format!("not a valid CSV row: {e}"))
         };
-        let line_of = |r: &csv::StringRecord| r.position().map_or(1, |p| p.line() as usize);
         let header = match records.next() {
             None => return Err(csv_err(1, "the CSV file is empty (no header row)".into())),
             Some(r) => r.map_err(read_err)?,
         };
-        let hline = line_of(&header);
+        let hline = record_line(&header);
         let headers: Vec<String> = header.iter().map(str::to_string).collect();
-        if column_factor(&headers[0], "crank_angle", Quantity::Angle) != Some(deg_to_rad(1.0)) {
-            return Err(csv_err(
-                hline,
-                format!(
-                    "the first column must be 'crank_angle_deg', found '{}'",
-                    headers[0].escape_debug()
-                ),
-            ));
-        }
-        let mut index = Vec::new();
-        for (base, q) in wanted {
-            let found = headers
-                .iter()
-                .enumerate()
-                .skip(1)
-                .find_map(|(i, h)| column_factor(h, base, *q).map(|f| (i, f)));
-            match found {
-                Some(x) => index.push(x),
-                None => {
-                    return Err(csv_err(
-                        hline,
-                        format!(
-                            "no column '{base}_<unit>' (unit one of: {}) among {:?}",
-                            q.unit_list(),
-                            headers
-                        ),
-                    ));
-                }
-            }
-        }
-        let mut angles = Vec::new();
-        let mut cols = vec![Vec::new(); wanted.len()];
-        for record in records {
-            let record = record.map_err(read_err)?;
-            let line = line_of(&record);
-            if record.len() != headers.len() {
-                return Err(csv_err(
-                    line,
-                    format!(
-                        "row has {} cells, the header has {}",
-                        record.len(),
-                        headers.len()
-                    ),
-                ));
-            }
-            let num = |c: usize| -> Result<f64, CaseError> {
-                match record[c].parse::<f64>() {
-                    Ok(v) if v.is_finite() => Ok(v),
-                    _ => Err(csv_err(
-                        line,
-                        format!(
-                            "column '{}': '{}' is not a finite number",
-                            headers[c],
-                            record[c].escape_debug()
-                        ),
-                    )),
-                }
-            };
-            let a = num(0)?;
-            if let Some(&prev) = angles.last()
-                && a <= prev
-            {
-                return Err(csv_err(
-                    line,
-                    format!("crank angle {a}° does not increase (previous row {prev}°)"),
-                ));
-            }
-            angles.push(a);
-            for (k, (c, f)) in index.iter().enumerate() {
-                cols[k].push(num(*c)? * f);
-            }
-        }
+        let index = column_index(&headers, wanted, |message| csv_err(hline, message))?;
+        let (angles, cols) = read_rows(records, &headers, &index, &csv_err, &read_err)?;
         if angles.is_empty() {
             return Err(csv_err(hline, "the table has a header but no rows".into()));
         }
@@ -846,6 +803,99 @@ impl<'a> Ctx<'a> {
 
 /// A CSV table as read: the file's text, the crank angles (deg) and the wanted columns (SI).
 pub(crate) type CsvTable = (String, Vec<f64>, Vec<Vec<f64>>);
+
+/// 1-based line of a CSV record in its file.
+fn record_line(r: &csv::StringRecord) -> usize {
+    r.position().map_or(1, |p| p.line() as usize)
+}
+
+/// The column of each wanted quantity and its factor to SI, after checking that the first
+/// column is `crank_angle_deg`.
+fn column_index(
+    headers: &[String],
+    wanted: &[(&str, Quantity)],
+    header_err: impl Fn(String) -> CaseError,
+) -> Result<Vec<(usize, f64)>, CaseError> {
+    if column_factor(&headers[0], "crank_angle", Quantity::Angle) != Some(deg_to_rad(1.0)) {
+        return Err(header_err(format!(
+            "the first column must be 'crank_angle_deg', found '{}'",
+            headers[0].escape_debug()
+        )));
+    }
+    let mut index = Vec::new();
+    for (base, q) in wanted {
+        let found = headers
+            .iter()
+            .enumerate()
+            .skip(1)
+            .find_map(|(i, h)| column_factor(h, base, *q).map(|f| (i, f)));
+        match found {
+            Some(x) => index.push(x),
+            None => {
+                return Err(header_err(format!(
+                    "no column '{base}_<unit>' (unit one of: {}) among {:?}",
+                    q.unit_list(),
+                    headers
+                )));
+            }
+        }
+    }
+    Ok(index)
+}
+
+/// The table's rows: every cell a finite number, crank angles increasing, the wanted columns
+/// scaled to SI.
+fn read_rows(
+    records: impl Iterator<Item = csv::Result<csv::StringRecord>>,
+    headers: &[String],
+    index: &[(usize, f64)],
+    csv_err: &impl Fn(usize, String) -> CaseError,
+    read_err: &impl Fn(csv::Error) -> CaseError,
+) -> Result<(Vec<f64>, Vec<Vec<f64>>), CaseError> {
+    let mut angles = Vec::new();
+    let mut cols = vec![Vec::new(); index.len()];
+    for record in records {
+        let record = record.map_err(read_err)?;
+        let line = record_line(&record);
+        if record.len() != headers.len() {
+            return Err(csv_err(
+                line,
+                format!(
+                    "row has {} cells, the header has {}",
+                    record.len(),
+                    headers.len()
+                ),
+            ));
+        }
+        let num = |c: usize| -> Result<f64, CaseError> {
+            match record[c].parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(csv_err(
+                    line,
+                    format!(
+                        "column '{}': '{}' is not a finite number",
+                        headers[c],
+                        record[c].escape_debug()
+                    ),
+                )),
+            }
+        };
+        let a = num(0)?;
+        if let Some(&prev) = angles.last()
+            && a <= prev
+        {
+            return Err(csv_err(
+                line,
+                format!("crank angle {a}° does not increase (previous row {prev}°)"),
+            ));
+        }
+        angles.push(a);
+        for (k, (c, f)) in index.iter().enumerate() {
+            cols[k].push(num(*c)? * f);
+        }
+    }
+    Ok((angles, cols))
+}
 
 /// A periodic history table must span less than one cycle (the load table's rule, applied to
 /// the feed and speed tables too: a longer table would be cut off silently).
@@ -977,23 +1027,9 @@ pub(crate) fn case_name(given: Option<&str>, ctx: &Ctx<'_>) -> Result<String, Ca
     Ok(name)
 }
 
+/// The case file's sections resolved in file order, each stage checking its own keys.
 fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
-    if raw.sweep.is_some() {
-        return Err(ctx.err(
-            crate::sweep::SWEEP_TABLE,
-            "this file is a sweep, one case per point: run it with `jbearing batch` (which \
-             expands it; `jbearing check` prints the expansion)",
-        ));
-    }
-    if raw.version != 1 {
-        return Err(ctx.err(
-            "version",
-            format!(
-                "this jbearing reads case files of version 1, not {}",
-                raw.version
-            ),
-        ));
-    }
+    check_kind_and_version(&raw, ctx)?;
     let name = case_name(raw.name.as_deref(), ctx)?;
     let (radius, length, radial_clearance) = resolve_bearing(&raw.bearing, ctx)?;
     let (grooves, starved_film_fraction) = resolve_grooves(&raw, radius, length, ctx)?;
@@ -1005,16 +1041,7 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         oil,
         heat_balance,
     } = resolve_viscosity(l, ctx)?;
-    let bulk_modulus = ctx.positive("lubricant.bulk_modulus_pa", l.bulk_modulus_pa)?;
-    let cavitation_pressure =
-        ctx.finite("lubricant.cavitation_pressure_pa", l.cavitation_pressure_pa)?;
-    let ambient_pressure = ctx.finite("lubricant.ambient_pressure_pa", l.ambient_pressure_pa)?;
-    if cavitation_pressure > ambient_pressure {
-        return Err(ctx.err(
-            "lubricant.cavitation_pressure_pa",
-            format!("{cavitation_pressure} Pa is above the ambient pressure {ambient_pressure} Pa"),
-        ));
-    }
+    let (bulk_modulus, cavitation_pressure, ambient_pressure) = resolve_pressures(l, ctx)?;
 
     let o = &raw.operation;
     let cycle_deg = ctx.positive("operation.cycle_deg", o.cycle_deg)?;
@@ -1041,47 +1068,12 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
     check_grid(g, length, &grooves, ctx)?;
 
     let solver = resolve_solver(&raw.solver, ctx)?;
-    let out = &raw.output;
-    if out.samples_per_cycle < 8 {
-        return Err(ctx.err(
-            "output.samples_per_cycle",
-            format!("{} is too few (at least 8)", out.samples_per_cycle),
-        ));
-    }
-    let m = &raw.methods;
-    let closed_form_models = resolve_closed_form(raw.closed_form.as_ref(), m.closed_form, ctx)?;
+    let output = resolve_output(&raw.output, ctx)?;
     let steady = load_forces.iter().all(|f| *f == load_forces[0])
         && matches!(journal_speed, Schedule::Constant(_))
         && matches!(bearing_speed, Schedule::Constant(_));
-    // A dynamic case takes the deformation in the rigorous (inverse) method's Reynolds film.
-    let dynamic_ok = m.rigorous && solver.rigorous_film == RigorousFilm::Reynolds;
-    let elastic = raw
-        .elastic
-        .as_ref()
-        .map(|e| resolve_elastic(e, radius, steady || dynamic_ok, ctx))
-        .transpose()?;
-    if !(m.mobility || m.rigorous || !closed_form_models.is_empty() || elastic.is_some()) {
-        return Err(ctx.err(
-            "methods",
-            "every method is switched off: nothing to compute",
-        ));
-    }
-    // The mass-conserving film needs oil from somewhere: a groove, or ends above p_cav (the
-    // solver would refuse it only after the other methods had run).
-    if m.rigorous
-        && solver.rigorous_film == RigorousFilm::Reynolds
-        && grooves.is_empty()
-        && ambient_pressure <= cavitation_pressure
-    {
-        return Err(ctx.err(
-            "methods.rigorous",
-            format!(
-                "the mass-conserving (JFO) film has no oil supply: no [[grooves]] and the ends at \
-                 p_amb = {ambient_pressure} Pa ≤ p_cav = {cavitation_pressure} Pa (add a feed \
-                 groove, raise lubricant.ambient_pressure_pa, or set rigorous = false)"
-            ),
-        ));
-    }
+    let (methods, closed_form_models, elastic) =
+        resolve_methods(&raw, radius, steady, &solver, ctx)?;
 
     let mut case = Case {
         name,
@@ -1112,22 +1104,119 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         n_theta: g.n_theta,
         n_z: g.n_z,
         solver,
-        output: OutputOptions {
-            samples_per_cycle: out.samples_per_cycle,
-            field_snapshots: out.field_snapshots,
-            plots: out.plots,
-        },
-        methods: Methods {
-            mobility: m.mobility,
-            rigorous: m.rigorous,
-            closed_form: !closed_form_models.is_empty(),
-        },
+        output,
+        methods,
         closed_form_models,
         elastic,
         warnings: Vec::new(),
     };
+    check_oil_supply(&case, ctx)?;
     case.warnings = plausibility_warnings(&case, ctx);
     Ok(case)
+}
+
+/// A single case of a known version (a sweep is a batch of cases).
+fn check_kind_and_version(raw: &CaseFile, ctx: &Ctx<'_>) -> Result<(), CaseError> {
+    if raw.sweep.is_some() {
+        return Err(ctx.err(
+            crate::sweep::SWEEP_TABLE,
+            "this file is a sweep, one case per point: run it with `jbearing batch` (which \
+             expands it; `jbearing check` prints the expansion)",
+        ));
+    }
+    if raw.version != 1 {
+        return Err(ctx.err(
+            "version",
+            format!(
+                "this jbearing reads case files of version 1, not {}",
+                raw.version
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// `[lubricant]` bulk modulus, cavitation and ambient pressures (p_cav at most p_amb).
+fn resolve_pressures(l: &LubricantSection, ctx: &Ctx<'_>) -> Result<(f64, f64, f64), CaseError> {
+    let bulk_modulus = ctx.positive("lubricant.bulk_modulus_pa", l.bulk_modulus_pa)?;
+    let cavitation_pressure =
+        ctx.finite("lubricant.cavitation_pressure_pa", l.cavitation_pressure_pa)?;
+    let ambient_pressure = ctx.finite("lubricant.ambient_pressure_pa", l.ambient_pressure_pa)?;
+    if cavitation_pressure > ambient_pressure {
+        return Err(ctx.err(
+            "lubricant.cavitation_pressure_pa",
+            format!("{cavitation_pressure} Pa is above the ambient pressure {ambient_pressure} Pa"),
+        ));
+    }
+    Ok((bulk_modulus, cavitation_pressure, ambient_pressure))
+}
+
+/// `[output]`: samples per cycle (at least 8), snapshots and plots.
+fn resolve_output(out: &OutputSection, ctx: &Ctx<'_>) -> Result<OutputOptions, CaseError> {
+    if out.samples_per_cycle < 8 {
+        return Err(ctx.err(
+            "output.samples_per_cycle",
+            format!("{} is too few (at least 8)", out.samples_per_cycle),
+        ));
+    }
+    Ok(OutputOptions {
+        samples_per_cycle: out.samples_per_cycle,
+        field_snapshots: out.field_snapshots,
+        plots: out.plots,
+    })
+}
+
+/// `[methods]`, `[closed_form]` and `[elastic]`: what to compute, refusing a case with nothing
+/// to compute.
+fn resolve_methods(
+    raw: &CaseFile,
+    radius: f64,
+    steady: bool,
+    solver: &SolverOptions,
+    ctx: &Ctx<'_>,
+) -> Result<(Methods, Vec<ClosedFormModel>, Option<ElasticParams>), CaseError> {
+    let m = &raw.methods;
+    let closed_form_models = resolve_closed_form(raw.closed_form.as_ref(), m.closed_form, ctx)?;
+    // A dynamic case takes the deformation in the rigorous (inverse) method's Reynolds film.
+    let dynamic_ok = m.rigorous && solver.rigorous_film == RigorousFilm::Reynolds;
+    let elastic = raw
+        .elastic
+        .as_ref()
+        .map(|e| resolve_elastic(e, radius, steady || dynamic_ok, ctx))
+        .transpose()?;
+    if !(m.mobility || m.rigorous || !closed_form_models.is_empty() || elastic.is_some()) {
+        return Err(ctx.err(
+            "methods",
+            "every method is switched off: nothing to compute",
+        ));
+    }
+    let methods = Methods {
+        mobility: m.mobility,
+        rigorous: m.rigorous,
+        closed_form: !closed_form_models.is_empty(),
+    };
+    Ok((methods, closed_form_models, elastic))
+}
+
+/// The mass-conserving film needs oil from somewhere: a groove, or ends above p_cav (the
+/// solver would refuse it only after the other methods had run).
+fn check_oil_supply(case: &Case, ctx: &Ctx<'_>) -> Result<(), CaseError> {
+    let (ambient_pressure, cavitation_pressure) = (case.ambient_pressure, case.cavitation_pressure);
+    if case.methods.rigorous
+        && case.solver.rigorous_film == RigorousFilm::Reynolds
+        && case.grooves.is_empty()
+        && ambient_pressure <= cavitation_pressure
+    {
+        return Err(ctx.err(
+            "methods.rigorous",
+            format!(
+                "the mass-conserving (JFO) film has no oil supply: no [[grooves]] and the ends at \
+                 p_amb = {ambient_pressure} Pa ≤ p_cav = {cavitation_pressure} Pa (add a feed \
+                 groove, raise lubricant.ambient_pressure_pa, or set rigorous = false)"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// `[elastic]`: the solver's elastic model of shaft and housing, checked here so that each
@@ -1146,36 +1235,8 @@ fn resolve_elastic(
              \"reynolds\"), or make the case steady (one load point, constant speeds)",
         ));
     }
-    let youngs_modulus = ctx.positive("elastic.youngs_modulus_pa", e.youngs_modulus_pa)?;
-    let nu = e.poisson_ratio;
-    if !(0.0..0.5).contains(&nu) {
-        return Err(ctx.err(
-            "elastic.poisson_ratio",
-            format!(
-                "must lie in [0, 0.5) (0.5 is incompressible, which the plane-strain \
-                 displacement elements cannot represent), got {nu}"
-            ),
-        ));
-    }
-    let hole = ctx.positive("elastic.shaft_hole_radius_m", e.shaft_hole_radius_m)?;
-    if hole >= radius {
-        return Err(ctx.err(
-            "elastic.shaft_hole_radius_m",
-            format!(
-                "the shaft's hole ({hole} m) must be smaller than the journal radius {radius} m"
-            ),
-        ));
-    }
-    let half_width = ctx.positive("elastic.housing_half_width_m", e.housing_half_width_m)?;
-    if half_width <= radius {
-        return Err(ctx.err(
-            "elastic.housing_half_width_m",
-            format!(
-                "the housing's outer edges ({half_width} m from the centre) must lie outside the \
-                 bore (radius {radius} m)"
-            ),
-        ));
-    }
+    let material = elastic_material(e, ctx)?;
+    let (hole, half_width) = elastic_bodies(e, radius, ctx)?;
     if e.n_theta < 8 {
         return Err(ctx.err(
             "elastic.n_theta",
@@ -1200,10 +1261,6 @@ fn resolve_elastic(
     if e.max_iterations == 0 {
         return Err(ctx.err("elastic.max_iterations", "must be at least 1, got 0"));
     }
-    let material = Material {
-        youngs_modulus,
-        poisson_ratio: nu,
-    };
     let defaults = ElasticParams::steel(radius);
     let layers = match (e.shaft_layers, e.housing_layers) {
         (None, None) => None,
@@ -1223,6 +1280,49 @@ fn resolve_elastic(
         max_iterations: e.max_iterations,
         ..defaults
     })
+}
+
+/// One material for shaft and housing: Young's modulus and a compressible Poisson's ratio.
+fn elastic_material(e: &ElasticSection, ctx: &Ctx<'_>) -> Result<Material, CaseError> {
+    let youngs_modulus = ctx.positive("elastic.youngs_modulus_pa", e.youngs_modulus_pa)?;
+    let nu = e.poisson_ratio;
+    if !(0.0..0.5).contains(&nu) {
+        return Err(ctx.err(
+            "elastic.poisson_ratio",
+            format!(
+                "must lie in [0, 0.5) (0.5 is incompressible, which the plane-strain \
+                 displacement elements cannot represent), got {nu}"
+            ),
+        ));
+    }
+    Ok(Material {
+        youngs_modulus,
+        poisson_ratio: nu,
+    })
+}
+
+/// The shaft's hole radius and the square housing's half width around a bore of `radius`.
+fn elastic_bodies(e: &ElasticSection, radius: f64, ctx: &Ctx<'_>) -> Result<(f64, f64), CaseError> {
+    let hole = ctx.positive("elastic.shaft_hole_radius_m", e.shaft_hole_radius_m)?;
+    if hole >= radius {
+        return Err(ctx.err(
+            "elastic.shaft_hole_radius_m",
+            format!(
+                "the shaft's hole ({hole} m) must be smaller than the journal radius {radius} m"
+            ),
+        ));
+    }
+    let half_width = ctx.positive("elastic.housing_half_width_m", e.housing_half_width_m)?;
+    if half_width <= radius {
+        return Err(ctx.err(
+            "elastic.housing_half_width_m",
+            format!(
+                "the housing's outer edges ({half_width} m from the centre) must lie outside the \
+                 bore (radius {radius} m)"
+            ),
+        ));
+    }
+    Ok((hole, half_width))
 }
 
 /// The bearing section: (R, L, c) in m.
@@ -1381,93 +1481,24 @@ fn resolve_load(
             ));
         }
     };
-    let direction = match ld.direction {
-        Some(d) => {
-            let n = d[0].hypot(d[1]);
-            if !(n.is_finite() && n > 0.0) {
-                return Err(ctx.err(
-                    "load.direction",
-                    format!("{d:?} is not a usable direction (zero or not finite)"),
-                ));
-            }
-            Some([d[0] / n, d[1] / n])
+    let direction = load_direction(ld, ctx)?;
+    let (load_angles_deg, load_forces) = match (&ld.file, &ld.crank_angle_deg) {
+        (Some(_), Some(_)) => {
+            return Err(ctx.err(
+                "load",
+                "give either `file` or the inline table `crank_angle_deg`, not both",
+            ));
         }
-        None => None,
-    };
-    let (load_angles_deg, load_forces): (Vec<f64>, Vec<[f64; 2]>) =
-        match (&ld.file, &ld.crank_angle_deg) {
-            (Some(_), Some(_)) => {
-                return Err(ctx.err(
-                    "load",
-                    "give either `file` or the inline table `crank_angle_deg`, not both",
-                ));
-            }
-            (None, None) => {
-                return Err(ctx.err(
-                    "load",
-                    "no load: give `file = \"table.csv\"` or the inline `crank_angle_deg` with \
+        (None, None) => {
+            return Err(ctx.err(
+                "load",
+                "no load: give `file = \"table.csv\"` or the inline `crank_angle_deg` with \
                  `x_n`, `y_n` (or `magnitude_n` and `direction`)",
-                ));
-            }
-            (Some(rel), None) => {
-                let (text, angles, forces) = if let Some(d) = direction {
-                    let (text, a, cols) =
-                        ctx.read_table("load.file", rel, &[("load", Quantity::Force)])?;
-                    let f = cols[0].iter().map(|m| [m * d[0], m * d[1]]).collect();
-                    (text, a, f)
-                } else {
-                    let (text, a, cols) = ctx.read_table(
-                        "load.file",
-                        rel,
-                        &[("load_x", Quantity::Force), ("load_y", Quantity::Force)],
-                    )?;
-                    let f = cols[0]
-                        .iter()
-                        .zip(&cols[1])
-                        .map(|(x, y)| [*x, *y])
-                        .collect();
-                    (text, a, f)
-                };
-                input_files.push(InputFile {
-                    path: rel.clone(),
-                    text,
-                });
-                (angles, forces)
-            }
-            (None, Some(angles)) => {
-                let akey = "load.crank_angle_deg";
-                if let Some(d) = direction {
-                    let Some(m) = &ld.magnitude_n else {
-                        return Err(ctx.err(
-                            "load.magnitude_n",
-                            "missing: a load with `direction` needs `magnitude_n`",
-                        ));
-                    };
-                    check_inline(ctx, akey, angles, &[("load.magnitude_n", m)])?;
-                    (
-                        angles.clone(),
-                        m.iter().map(|v| [v * d[0], v * d[1]]).collect(),
-                    )
-                } else {
-                    let (Some(x), Some(y)) = (&ld.x_n, &ld.y_n) else {
-                        return Err(ctx.err(
-                            if ld.x_n.is_none() {
-                                "load.x_n"
-                            } else {
-                                "load.y_n"
-                            },
-                            "missing: an inline load needs both `x_n` and `y_n` (or `magnitude_n` \
-                         with `direction`)",
-                        ));
-                    };
-                    check_inline(ctx, akey, angles, &[("load.x_n", x), ("load.y_n", y)])?;
-                    (
-                        angles.clone(),
-                        x.iter().zip(y).map(|(a, b)| [*a, *b]).collect(),
-                    )
-                }
-            }
-        };
+            ));
+        }
+        (Some(rel), None) => load_from_file(rel, direction, input_files, ctx)?,
+        (None, Some(angles)) => inline_load(ld, angles, direction, ctx)?,
+    };
     let (load_angles_deg, load_forces) = if load_angles_deg.len() == 1 {
         // A constant load: the solvers' tables need two points.
         (
@@ -1498,6 +1529,93 @@ fn resolve_load(
         forces: load_forces,
         interpolation: interp,
     })
+}
+
+/// `load.direction` as a unit vector, if given.
+fn load_direction(ld: &LoadSection, ctx: &Ctx<'_>) -> Result<Option<[f64; 2]>, CaseError> {
+    let Some(d) = ld.direction else {
+        return Ok(None);
+    };
+    let n = d[0].hypot(d[1]);
+    if !(n.is_finite() && n > 0.0) {
+        return Err(ctx.err(
+            "load.direction",
+            format!("{d:?} is not a usable direction (zero or not finite)"),
+        ));
+    }
+    Ok(Some([d[0] / n, d[1] / n]))
+}
+
+/// A load table from a CSV file (`load` along `direction`, or `load_x` and `load_y`), kept
+/// among the input files.
+fn load_from_file(
+    rel: &str,
+    direction: Option<[f64; 2]>,
+    input_files: &mut Vec<InputFile>,
+    ctx: &Ctx<'_>,
+) -> Result<(Vec<f64>, Vec<[f64; 2]>), CaseError> {
+    let (text, angles, forces) = if let Some(d) = direction {
+        let (text, a, cols) = ctx.read_table("load.file", rel, &[("load", Quantity::Force)])?;
+        let f = cols[0].iter().map(|m| [m * d[0], m * d[1]]).collect();
+        (text, a, f)
+    } else {
+        let (text, a, cols) = ctx.read_table(
+            "load.file",
+            rel,
+            &[("load_x", Quantity::Force), ("load_y", Quantity::Force)],
+        )?;
+        let f = cols[0]
+            .iter()
+            .zip(&cols[1])
+            .map(|(x, y)| [*x, *y])
+            .collect();
+        (text, a, f)
+    };
+    input_files.push(InputFile {
+        path: rel.to_string(),
+        text,
+    });
+    Ok((angles, forces))
+}
+
+/// An inline load table: `x_n` and `y_n`, or `magnitude_n` along `direction`.
+fn inline_load(
+    ld: &LoadSection,
+    angles: &[f64],
+    direction: Option<[f64; 2]>,
+    ctx: &Ctx<'_>,
+) -> Result<(Vec<f64>, Vec<[f64; 2]>), CaseError> {
+    let akey = "load.crank_angle_deg";
+    if let Some(d) = direction {
+        let Some(m) = &ld.magnitude_n else {
+            return Err(ctx.err(
+                "load.magnitude_n",
+                "missing: a load with `direction` needs `magnitude_n`",
+            ));
+        };
+        check_inline(ctx, akey, angles, &[("load.magnitude_n", m)])?;
+        Ok((
+            angles.to_vec(),
+            m.iter().map(|v| [v * d[0], v * d[1]]).collect(),
+        ))
+    } else {
+        let (Some(x), Some(y)) = (&ld.x_n, &ld.y_n) else {
+            return Err(ctx.err(
+                if ld.x_n.is_none() {
+                    "load.x_n"
+                } else {
+                    "load.y_n"
+                },
+                "missing: an inline load needs both `x_n` and `y_n` (or `magnitude_n` \
+                 with `direction`)",
+            ));
+        };
+        check_inline(ctx, akey, angles, &[("load.x_n", x), ("load.y_n", y)])?;
+        Ok((
+            angles.to_vec(),
+            x.iter().zip(y).map(|(a, b)| [*a, *b]).collect(),
+        ))
+    }
 }
 
 /// The groove feed pressure (gauge, Pa): a constant or a table over the crank angle; ambient
@@ -1834,34 +1952,8 @@ fn resolve_viscosity(l: &LubricantSection, ctx: &Ctx<'_>) -> Result<ResolvedVisc
             format!("must be ≥ 0 and finite (1/Pa; oils: 1e-8 … 3e-8), got {alpha}"),
         ));
     }
-    let law = match (&l.viscosity_pa_s, &l.vogel, &l.oil) {
-        (Some(mu), None, None) => {
-            if alpha > 0.0 {
-                return Err(ctx.err(
-                    "lubricant.pressure_viscosity_coefficient_per_pa",
-                    "a pressure-dependent viscosity needs a viscosity–temperature law \
-                     ([lubricant.vogel] or oil) with its temperature",
-                ));
-            }
-            if l.temperature.is_some() || l.heat_balance.is_some() {
-                let key = if l.temperature.is_some() {
-                    "lubricant.temperature"
-                } else {
-                    "lubricant.heat_balance"
-                };
-                return Err(ctx.err(
-                    key,
-                    "a film temperature needs a viscosity–temperature law ([lubricant.vogel] or \
-                     oil), not a constant viscosity_pa_s",
-                ));
-            }
-            return Ok(ResolvedViscosity {
-                viscosity: ctx.positive("lubricant.viscosity_pa_s", *mu)?,
-                model: None,
-                oil: None,
-                heat_balance: None,
-            });
-        }
+    let (vogel, oil) = match (&l.viscosity_pa_s, &l.vogel, &l.oil) {
+        (Some(mu), None, None) => return constant_viscosity(l, *mu, alpha, ctx),
         (None, None, None) => {
             return Err(ctx.err(
                 "lubricant.viscosity_pa_s",
@@ -1877,22 +1969,7 @@ fn resolve_viscosity(l: &LubricantSection, ctx: &Ctx<'_>) -> Result<ResolvedVisc
             },
             None,
         ),
-        (None, None, Some(name)) => {
-            let grade = IsoViscosityGrade::from_name(name).ok_or_else(|| {
-                ctx.err(
-                    "lubricant.oil",
-                    format!(
-                        "unknown oil {name:?}: the named oils are {}",
-                        IsoViscosityGrade::ALL
-                            .iter()
-                            .map(|g| format!("{:?}", g.name()))
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ),
-                )
-            })?;
-            (grade.vogel(), Some(grade.name()))
-        }
+        (None, None, Some(name)) => named_oil(name, ctx)?,
         _ => {
             return Err(ctx.err(
                 if l.oil.is_some() {
@@ -1903,18 +1980,6 @@ fn resolve_viscosity(l: &LubricantSection, ctx: &Ctx<'_>) -> Result<ResolvedVisc
                 "give one of viscosity_pa_s, [lubricant.vogel] or oil (each sets the viscosity), \
                  not several",
             ));
-        }
-    };
-    let (vogel, oil) = law;
-    let mean_viscosity = |t: f64| {
-        let mu = vogel.viscosity(t);
-        if mu > 0.0 && mu.is_finite() && t > vogel.c {
-            Ok(mu)
-        } else {
-            Err(ctx.err(
-                "lubricant.vogel",
-                format!("gives μ₀({t} °C) = {mu} Pa·s, not a positive finite viscosity"),
-            ))
         }
     };
     match (&l.temperature, &l.heat_balance) {
@@ -1928,95 +1993,179 @@ fn resolve_viscosity(l: &LubricantSection, ctx: &Ctx<'_>) -> Result<ResolvedVisc
             "a viscosity–temperature law needs [lubricant.temperature] (mean_c, or inlet_c and \
              outlet_c) or [lubricant.heat_balance] (supply_temperature_c)",
         )),
-        (None, Some(h)) => {
-            let params = HeatBalanceParams {
-                supply_temperature: ctx.finite(
-                    "lubricant.heat_balance.supply_temperature_c",
-                    h.supply_temperature_c,
-                )?,
-                volumetric_heat_capacity: ctx.positive(
-                    "lubricant.heat_balance.volumetric_heat_capacity_j_m3_k",
-                    h.volumetric_heat_capacity_j_m3_k,
-                )?,
-                heat_to_structure: h.heat_to_housing_and_shaft,
-                tolerance: ctx.positive("lubricant.heat_balance.tolerance_k", h.tolerance_k)?,
-                max_iterations: h.max_iterations,
-            };
-            if !(0.0..1.0).contains(&params.heat_to_structure) {
-                return Err(ctx.err(
-                    "lubricant.heat_balance.heat_to_housing_and_shaft",
-                    format!(
-                        "must lie in [0, 1) (the share of the power loss conducted away), got {}",
-                        params.heat_to_structure
-                    ),
-                ));
-            }
-            if params.max_iterations < 2 {
-                return Err(ctx.err(
-                    "lubricant.heat_balance.max_iterations",
-                    format!("must be at least 2, got {}", params.max_iterations),
-                ));
-            }
-            let viscosity = mean_viscosity(params.supply_temperature)?;
-            Ok(ResolvedViscosity {
-                viscosity,
-                model: None,
-                oil,
-                heat_balance: Some(CaseHeatBalance {
-                    vogel,
-                    params,
-                    pressure_coefficient: alpha,
-                }),
-            })
-        }
-        (Some(t), None) => {
-            let (temperature, mean) = match (t.mean_c, t.inlet_c, t.outlet_c) {
-                (Some(m), None, None) => {
-                    let m = ctx.finite("lubricant.temperature.mean_c", m)?;
-                    (Temperature::Constant(m), m)
-                }
-                (None, Some(i), Some(o)) => {
-                    let i = ctx.finite("lubricant.temperature.inlet_c", i)?;
-                    let o = ctx.finite("lubricant.temperature.outlet_c", o)?;
-                    let span = t.rise_span_deg;
-                    if !(span > 0.0 && span <= 360.0) {
-                        return Err(ctx.err(
-                            "lubricant.temperature.rise_span_deg",
-                            format!("must lie in (0, 360], got {span}"),
-                        ));
-                    }
-                    (
-                        Temperature::LinearOverSpan {
-                            inlet: i,
-                            outlet: o,
-                            span: span.to_radians(),
-                        },
-                        0.5 * (i + o),
-                    )
-                }
-                _ => {
-                    return Err(ctx.err(
-                        "lubricant.temperature",
-                        "give mean_c, or inlet_c and outlet_c (not both, not one of the pair)",
-                    ));
-                }
-            };
-            let model = ViscosityModel {
-                vogel,
-                temperature,
-                pressure_coefficient: alpha,
-            };
-            if let Err(e) = model.validate() {
-                return Err(ctx.err("lubricant.temperature", e.to_string()));
-            }
-            Ok(ResolvedViscosity {
-                viscosity: mean_viscosity(mean)?,
-                model: Some(model),
-                oil,
-                heat_balance: None,
-            })
-        }
+        (None, Some(h)) => resolve_heat_balance(h, vogel, oil, alpha, ctx),
+        (Some(t), None) => resolve_film_temperature(t, vogel, oil, alpha, ctx),
     }
+}
+
+/// A constant `viscosity_pa_s`: no pressure coefficient, no film temperature.
+fn constant_viscosity(
+    l: &LubricantSection,
+    mu: f64,
+    alpha: f64,
+    ctx: &Ctx<'_>,
+) -> Result<ResolvedViscosity, CaseError> {
+    if alpha > 0.0 {
+        return Err(ctx.err(
+            "lubricant.pressure_viscosity_coefficient_per_pa",
+            "a pressure-dependent viscosity needs a viscosity–temperature law \
+             ([lubricant.vogel] or oil) with its temperature",
+        ));
+    }
+    if l.temperature.is_some() || l.heat_balance.is_some() {
+        let key = if l.temperature.is_some() {
+            "lubricant.temperature"
+        } else {
+            "lubricant.heat_balance"
+        };
+        return Err(ctx.err(
+            key,
+            "a film temperature needs a viscosity–temperature law ([lubricant.vogel] or \
+             oil), not a constant viscosity_pa_s",
+        ));
+    }
+    Ok(ResolvedViscosity {
+        viscosity: ctx.positive("lubricant.viscosity_pa_s", mu)?,
+        model: None,
+        oil: None,
+        heat_balance: None,
+    })
+}
+
+/// The Vogel law of a named ISO 3448 oil, with its name.
+fn named_oil(name: &str, ctx: &Ctx<'_>) -> Result<(Vogel, Option<String>), CaseError> {
+    let grade = IsoViscosityGrade::from_name(name).ok_or_else(|| {
+        ctx.err(
+            "lubricant.oil",
+            format!(
+                "unknown oil {name:?}: the named oils are {}",
+                IsoViscosityGrade::ALL
+                    .iter()
+                    .map(|g| format!("{:?}", g.name()))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        )
+    })?;
+    Ok((grade.vogel(), Some(grade.name())))
+}
+
+/// μ₀(t) of the Vogel law, if it is a positive finite viscosity above the law's pole.
+fn vogel_viscosity_at(vogel: &Vogel, t: f64, ctx: &Ctx<'_>) -> Result<f64, CaseError> {
+    let mu = vogel.viscosity(t);
+    if mu > 0.0 && mu.is_finite() && t > vogel.c {
+        Ok(mu)
+    } else {
+        Err(ctx.err(
+            "lubricant.vogel",
+            format!("gives μ₀({t} °C) = {mu} Pa·s, not a positive finite viscosity"),
+        ))
+    }
+}
+
+/// `[lubricant.heat_balance]`: the balance's constants, μ at the supply temperature to start.
+fn resolve_heat_balance(
+    h: &HeatBalanceSection,
+    vogel: Vogel,
+    oil: Option<String>,
+    alpha: f64,
+    ctx: &Ctx<'_>,
+) -> Result<ResolvedViscosity, CaseError> {
+    let params = HeatBalanceParams {
+        supply_temperature: ctx.finite(
+            "lubricant.heat_balance.supply_temperature_c",
+            h.supply_temperature_c,
+        )?,
+        volumetric_heat_capacity: ctx.positive(
+            "lubricant.heat_balance.volumetric_heat_capacity_j_m3_k",
+            h.volumetric_heat_capacity_j_m3_k,
+        )?,
+        heat_to_structure: h.heat_to_housing_and_shaft,
+        tolerance: ctx.positive("lubricant.heat_balance.tolerance_k", h.tolerance_k)?,
+        max_iterations: h.max_iterations,
+    };
+    if !(0.0..1.0).contains(&params.heat_to_structure) {
+        return Err(ctx.err(
+            "lubricant.heat_balance.heat_to_housing_and_shaft",
+            format!(
+                "must lie in [0, 1) (the share of the power loss conducted away), got {}",
+                params.heat_to_structure
+            ),
+        ));
+    }
+    if params.max_iterations < 2 {
+        return Err(ctx.err(
+            "lubricant.heat_balance.max_iterations",
+            format!("must be at least 2, got {}", params.max_iterations),
+        ));
+    }
+    let viscosity = vogel_viscosity_at(&vogel, params.supply_temperature, ctx)?;
+    Ok(ResolvedViscosity {
+        viscosity,
+        model: None,
+        oil,
+        heat_balance: Some(CaseHeatBalance {
+            vogel,
+            params,
+            pressure_coefficient: alpha,
+        }),
+    })
+}
+
+/// `[lubricant.temperature]`: a constant or linearly rising film temperature, μ₀ at its mean.
+fn resolve_film_temperature(
+    t: &TemperatureSection,
+    vogel: Vogel,
+    oil: Option<String>,
+    alpha: f64,
+    ctx: &Ctx<'_>,
+) -> Result<ResolvedViscosity, CaseError> {
+    let (temperature, mean) = match (t.mean_c, t.inlet_c, t.outlet_c) {
+        (Some(m), None, None) => {
+            let m = ctx.finite("lubricant.temperature.mean_c", m)?;
+            (Temperature::Constant(m), m)
+        }
+        (None, Some(i), Some(o)) => {
+            let i = ctx.finite("lubricant.temperature.inlet_c", i)?;
+            let o = ctx.finite("lubricant.temperature.outlet_c", o)?;
+            let span = t.rise_span_deg;
+            if !(span > 0.0 && span <= 360.0) {
+                return Err(ctx.err(
+                    "lubricant.temperature.rise_span_deg",
+                    format!("must lie in (0, 360], got {span}"),
+                ));
+            }
+            (
+                Temperature::LinearOverSpan {
+                    inlet: i,
+                    outlet: o,
+                    span: span.to_radians(),
+                },
+                0.5 * (i + o),
+            )
+        }
+        _ => {
+            return Err(ctx.err(
+                "lubricant.temperature",
+                "give mean_c, or inlet_c and outlet_c (not both, not one of the pair)",
+            ));
+        }
+    };
+    let model = ViscosityModel {
+        vogel,
+        temperature,
+        pressure_coefficient: alpha,
+    };
+    if let Err(e) = model.validate() {
+        return Err(ctx.err("lubricant.temperature", e.to_string()));
+    }
+    let viscosity = vogel_viscosity_at(&model.vogel, mean, ctx)?;
+    Ok(ResolvedViscosity {
+        viscosity,
+        model: Some(model),
+        oil,
+        heat_balance: None,
+    })
 }
 
 /// `[closed_form] models` (or `methods.closed_form = true`, meaning every model).
