@@ -626,7 +626,8 @@ _CYCLE_DOC = """
         axial_center (m, default 0). The JFO film needs an oil supply: a groove with
         feed_pressure (Pa).
     grid : (n_theta, n_z)
-        Finite-difference grid of the film.
+        Finite-volume grid of the film (default: the library's validated grid of this L/D,
+        120 x 31, or 160 x 23 below L/D = 1/4).
     steps_per_cycle, max_cycles, initial_eccentricity
         Solver settings ([solver] of the case file).
     options : dict
@@ -753,7 +754,7 @@ def steady(
     viscosity: float,
     journal_speed: float,
     bearing_speed: float = 0.0,
-    grid: tuple[int, int] = (120, 22),
+    grid: tuple[int, int] | None = None,
     grooves=None,
     feed_pressure: float = 0.0,
     bulk_modulus: float = 1.5e9,
@@ -766,7 +767,8 @@ def steady(
 
     Grooves (dicts: center_angle [rad], circumferential_length [m], axial_width [m],
     axial_center [m]) are fed at feed_pressure (Pa); without grooves the film is fed along the
-    axial line at the widest gap. Returns a Dataset on (theta, z) with the fields pressure,
+    axial line at the widest gap. grid = (n_theta, n_z) defaults to the library's validated
+    grid of this L/D (120 x 31, or 160 x 23 below L/D = 1/4). Returns a Dataset on (theta, z) with the fields pressure,
     film_thickness, film_content and the scalars named as the series of ``CASE.h5``
     (eccentricity_x/y, eccentricity_ratio, attitude_angle, min_film_thickness, max_pressure,
     side_leakage, supply_flow, power_loss, cavitated_fraction) and the film force."""
@@ -789,8 +791,8 @@ def steady(
         load_y=float(load_y),
         journal_speed=float(journal_speed),
         bearing_speed=float(bearing_speed),
-        n_theta=int(grid[0]),
-        n_z=int(grid[1]),
+        n_theta=None if grid is None else int(grid[0]),
+        n_z=None if grid is None else int(grid[1]),
         grooves=g,
         feed_pressure=float(feed_pressure),
         bulk_modulus=float(bulk_modulus),

@@ -510,6 +510,7 @@ fn closed_form_text<'py>(
 /// (`ReynoldsSolver::solve_steady_load`) with the mass-conserving (JFO) film. Grooves are
 /// `(center_angle [rad], center_z [m], angular_width [rad], axial_width [m])`, each fed at
 /// `feed_pressure`; without grooves the film is fed along the axial line at the widest gap.
+/// `n_theta`/`n_z` left out (None) take the library's default grid of this L/D.
 #[pyfunction]
 #[pyo3(signature = (*, radius, length, clearance, viscosity, load_x, load_y, journal_speed,
     bearing_speed, n_theta, n_z, grooves, feed_pressure, bulk_modulus, cavitation_pressure,
@@ -525,8 +526,8 @@ fn steady<'py>(
     load_y: f64,
     journal_speed: f64,
     bearing_speed: f64,
-    n_theta: usize,
-    n_z: usize,
+    n_theta: Option<usize>,
+    n_z: Option<usize>,
     grooves: Vec<(f64, f64, f64, f64)>,
     feed_pressure: f64,
     bulk_modulus: f64,
@@ -556,7 +557,13 @@ fn steady<'py>(
         } else {
             SupplyModel::Grooves
         },
-        grid: GridParams { n_theta, n_z },
+        grid: {
+            let default = GridParams::for_length_ratio(length / (2.0 * radius));
+            GridParams {
+                n_theta: n_theta.unwrap_or(default.n_theta),
+                n_z: n_z.unwrap_or(default.n_z),
+            }
+        },
         ..ReynoldsParams::plain(radius, length, clearance, viscosity)
     };
     let conditions = OperatingConditions {

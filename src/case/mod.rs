@@ -63,6 +63,7 @@ use jbearing_solvers::closed_form::{ClosedFormError, ClosedFormModel};
 use jbearing_solvers::elastic::{ElasticParams, HousingShape, Material, square_layers};
 use jbearing_solvers::heat_balance::HeatBalanceParams;
 use jbearing_solvers::mobility::{LoadInterpolation, TabulatedLoad};
+use jbearing_solvers::reynolds::GridParams;
 use jbearing_solvers::time_scheme::TimeScheme;
 use jbearing_solvers::viscosity::{IsoViscosityGrade, Temperature, ViscosityModel, Vogel};
 
@@ -1064,8 +1065,8 @@ fn resolve(raw: CaseFile, ctx: &Ctx<'_>) -> Result<Case, CaseError> {
         ctx,
     )?;
 
-    let g = &raw.grid;
-    check_grid(g, length, &grooves, ctx)?;
+    let g = raw.grid.resolve(length / (2.0 * radius));
+    check_grid(&g, length, &grooves, ctx)?;
 
     let solver = resolve_solver(&raw.solver, ctx)?;
     let output = resolve_output(&raw.output, ctx)?;
@@ -1674,7 +1675,7 @@ fn resolve_feed(
 
 /// The film grid: enough nodes, and every groove wide enough to hold some.
 fn check_grid(
-    g: &GridSection,
+    g: &GridParams,
     length: f64,
     grooves: &[Groove],
     ctx: &Ctx<'_>,

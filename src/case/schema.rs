@@ -252,21 +252,24 @@ pub struct FeedSection {
     pub pressure_history_pa: Option<Vec<f64>>,
 }
 
-/// `[grid]`.
-#[derive(Debug, Deserialize)]
+/// `[grid]`: either key left out takes the library's validated default grid of the bearing's
+/// L/D (`GridParams::for_length_ratio`: 120 × 31, or 160 × 23 below L/D = 1/4) — what the
+/// application runs by default is what the validation tests run.
+#[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GridSection {
-    #[serde(default = "default_n_theta")]
-    pub n_theta: usize,
-    #[serde(default = "default_n_z")]
-    pub n_z: usize,
+    pub n_theta: Option<usize>,
+    pub n_z: Option<usize>,
 }
 
-impl Default for GridSection {
-    fn default() -> Self {
-        Self {
-            n_theta: default_n_theta(),
-            n_z: default_n_z(),
+impl GridSection {
+    /// The grid of a bearing with length ratio L/D: the keys given, the default for the rest.
+    pub fn resolve(&self, length_over_diameter: f64) -> jbearing_solvers::reynolds::GridParams {
+        let default =
+            jbearing_solvers::reynolds::GridParams::for_length_ratio(length_over_diameter);
+        jbearing_solvers::reynolds::GridParams {
+            n_theta: self.n_theta.unwrap_or(default.n_theta),
+            n_z: self.n_z.unwrap_or(default.n_z),
         }
     }
 }
@@ -366,14 +369,6 @@ fn default_starved_film_fraction() -> f64 {
 fn default_interpolation() -> String {
     "linear".into()
 }
-/// The library's validated default grid (`GridParams::default()`, 120 × 31): what the
-/// application runs by default is what the validation tests run.
-fn default_n_theta() -> usize {
-    jbearing_solvers::reynolds::GridParams::default().n_theta
-}
-fn default_n_z() -> usize {
-    jbearing_solvers::reynolds::GridParams::default().n_z
-}
 /// 1° of crank angle per step at a 360° cycle.
 fn default_time_steps() -> usize {
     360
@@ -410,4 +405,37 @@ fn default_time_scheme() -> String {
 
 fn default_true() -> bool {
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::case::{Case, test_case_text};
+    use std::path::Path;
+
+    /// The unit-test case (L/D = 0.333) with its length scaled to `length_m` and `grid` appended.
+    fn case_with(length_m: f64, grid: &str) -> Case {
+        let text = test_case_text(
+            "grid",
+            "crank_angle_deg = [0.0, 180.0]\nx_n = [-1000.0, -500.0]\ny_n = [0.0, 0.0]",
+            grid,
+        )
+        .replace("length_m = 0.018288", &format!("length_m = {length_m}"))
+        .replace("axial_width_m = 0.00381", "axial_width_m = 0.003");
+        Case::from_text(&text, Path::new("grid.toml")).unwrap()
+    }
+
+    /// Keys left out take the library's grid of the bearing's L/D (the validated default:
+    /// 120 × 31, 160 × 23 below L/D 1/4); keys given win, one at a time.
+    #[test]
+    fn default_grid_follows_the_length_ratio() {
+        let d = 2.0 * 0.02743;
+        let long = case_with(0.018288, "");
+        assert_eq!((long.n_theta, long.n_z), (120, 31));
+        let short = case_with(0.2 * d, "");
+        assert_eq!((short.n_theta, short.n_z), (160, 23));
+        let given = case_with(0.2 * d, "\n[grid]\nn_z = 11\n");
+        assert_eq!((given.n_theta, given.n_z), (160, 11));
+        let given = case_with(0.5 * d, "\n[grid]\nn_theta = 90\n");
+        assert_eq!((given.n_theta, given.n_z), (90, 31));
+    }
 }
