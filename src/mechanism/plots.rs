@@ -18,6 +18,8 @@ use std::path::{Path, PathBuf};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use jbearing_solvers::mechanism::{LubricatedJointParams, MechanismSolution};
+
 use super::MechanismResults;
 use crate::output::plots::{
     FAMILY, QUARTER, circle_points, crank_angle_chart, ensure_font, format_tick, format_unit_tick,
@@ -156,73 +158,8 @@ fn panel(
         (FAMILY, 22).into_font(),
     ))
     .map_err(err)?;
-    // Legend strip.
-    let mut x = 96;
-    let font = (FAMILY, 18).into_font();
-    let entries = curves
-        .iter()
-        .map(|c| (c.label.as_str(), c.color, c.dashed))
-        .chain(levels.iter().map(|l| (l.label.as_str(), l.color, true)))
-        .map(|(l, c, d)| (l, c, d, false))
-        .chain((!shade.is_empty()).then_some(("dry contact", CONTACT_SHADE, false, true)));
-    for (label, color, dashed, patch) in entries {
-        let y = 44;
-        if patch {
-            head.draw(&Rectangle::new(
-                [(x, y - 9), (x + 36, y + 9)],
-                color.filled(),
-            ))
-            .map_err(err)?;
-        } else if dashed {
-            for k in 0..3 {
-                head.draw(&PathElement::new(
-                    vec![(x + 14 * k, y), (x + 14 * k + 8, y)],
-                    color.stroke_width(3),
-                ))
-                .map_err(err)?;
-            }
-        } else {
-            head.draw(&PathElement::new(
-                vec![(x, y), (x + 36, y)],
-                color.stroke_width(3),
-            ))
-            .map_err(err)?;
-        }
-        head.draw(&Text::new(
-            label.to_string(),
-            (x + 44, y - 10),
-            font.clone(),
-        ))
-        .map_err(err)?;
-        let tw = head
-            .estimate_text_size(label, &font.clone().into())
-            .map_err(err)?
-            .0 as i32;
-        x += 44 + tw + 28;
-    }
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for (px, py) in curves.iter().flat_map(|c| c.points.iter()) {
-        x0 = x0.min(*px);
-        x1 = x1.max(*px);
-        y0 = y0.min(*py);
-        y1 = y1.max(*py);
-    }
-    for l in levels {
-        y0 = y0.min(l.value);
-        y1 = y1.max(l.value);
-    }
-    if y_from_zero {
-        y0 = y0.min(0.0);
-    }
-    let pad = 0.06 * (y1 - y0).max(1e-12 * y1.abs().max(1.0));
-    let (y0, y1) = (
-        if y_from_zero && y0 >= 0.0 {
-            0.0
-        } else {
-            y0 - pad
-        },
-        y1 + pad,
-    );
+    draw_legend_strip(&head, curves, levels, !shade.is_empty())?;
+    let (x0, x1, y0, y1) = panel_ranges(curves, levels, y_from_zero);
     let mut chart = crank_angle_chart(&area, (x0, x1), (y0, y1), ylabel)?;
     for (a, b) in shade {
         chart
@@ -274,10 +211,90 @@ fn panel(
     Ok(())
 }
 
-fn curves(
-    r: &MechanismResults,
-    value: impl Fn(&jbearing_solvers::mechanism::MechanismSolution, usize) -> f64,
-) -> Vec<Curve> {
+/// The legend strip above a panel's data: one entry per curve and level, and the dry-contact
+/// patch where the panel is `shaded`.
+fn draw_legend_strip(
+    head: &Area<'_>,
+    curves: &[Curve],
+    levels: &[Level],
+    shaded: bool,
+) -> Result<(), String> {
+    let mut x = 96;
+    let font = (FAMILY, 18).into_font();
+    let entries = curves
+        .iter()
+        .map(|c| (c.label.as_str(), c.color, c.dashed))
+        .chain(levels.iter().map(|l| (l.label.as_str(), l.color, true)))
+        .map(|(l, c, d)| (l, c, d, false))
+        .chain(shaded.then_some(("dry contact", CONTACT_SHADE, false, true)));
+    for (label, color, dashed, patch) in entries {
+        let y = 44;
+        if patch {
+            head.draw(&Rectangle::new(
+                [(x, y - 9), (x + 36, y + 9)],
+                color.filled(),
+            ))
+            .map_err(err)?;
+        } else if dashed {
+            for k in 0..3 {
+                head.draw(&PathElement::new(
+                    vec![(x + 14 * k, y), (x + 14 * k + 8, y)],
+                    color.stroke_width(3),
+                ))
+                .map_err(err)?;
+            }
+        } else {
+            head.draw(&PathElement::new(
+                vec![(x, y), (x + 36, y)],
+                color.stroke_width(3),
+            ))
+            .map_err(err)?;
+        }
+        head.draw(&Text::new(
+            label.to_string(),
+            (x + 44, y - 10),
+            font.clone(),
+        ))
+        .map_err(err)?;
+        let tw = head
+            .estimate_text_size(label, &font.clone().into())
+            .map_err(err)?
+            .0 as i32;
+        x += 44 + tw + 28;
+    }
+    Ok(())
+}
+
+/// The panel's crank-angle span and its value range over curves and levels, padded by 6 % (from
+/// zero where `y_from_zero` and nothing is negative): `(x0, x1, y0, y1)`.
+fn panel_ranges(curves: &[Curve], levels: &[Level], y_from_zero: bool) -> (f64, f64, f64, f64) {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for (px, py) in curves.iter().flat_map(|c| c.points.iter()) {
+        x0 = x0.min(*px);
+        x1 = x1.max(*px);
+        y0 = y0.min(*py);
+        y1 = y1.max(*py);
+    }
+    for l in levels {
+        y0 = y0.min(l.value);
+        y1 = y1.max(l.value);
+    }
+    if y_from_zero {
+        y0 = y0.min(0.0);
+    }
+    let pad = 0.06 * (y1 - y0).max(1e-12 * y1.abs().max(1.0));
+    let (y0, y1) = (
+        if y_from_zero && y0 >= 0.0 {
+            0.0
+        } else {
+            y0 - pad
+        },
+        y1 + pad,
+    );
+    (x0, x1, y0, y1)
+}
+
+fn curves(r: &MechanismResults, value: impl Fn(&MechanismSolution, usize) -> f64) -> Vec<Curve> {
     let mut out = Vec::new();
     // The lubricated curve on top: drawn last.
     if let Some(s) = &r.ideal {
@@ -402,6 +419,8 @@ fn draw_film(r: &MechanismResults, path: &Path) -> Result<(), String> {
     root.present().map_err(err)
 }
 
+/// `CASE_orbit.png`: the journal orbit in the clearance circle, with the contact circle, a dot
+/// every 90° of crank and the legend beside it.
 fn draw_orbit(r: &MechanismResults, path: &Path) -> Result<(), String> {
     let (Some(s), Some(j)) = (&r.lubricated, r.case.lubricated_joint()) else {
         return Err("no lubricated run".into());
@@ -458,6 +477,26 @@ fn draw_orbit(r: &MechanismResults, path: &Path) -> Result<(), String> {
             CONTACT_COLOR.stroke_width(2),
         ))
         .map_err(err)?;
+    draw_journal_path(&mut chart, r, s, c)?;
+    draw_orbit_legend(&legend_area, r, j)?;
+    root.present().map_err(err)
+}
+
+/// The orbit plot's axes: e / c both ways.
+type OrbitChart<'a, 'b> = ChartContext<
+    'a,
+    BitMapBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// The journal centre's path in e / c, a labelled dot every 90° of crank after the start and
+/// the start itself.
+fn draw_journal_path(
+    chart: &mut OrbitChart<'_, '_>,
+    r: &MechanismResults,
+    s: &MechanismSolution,
+    c: f64,
+) -> Result<(), String> {
     let pts: Vec<(f64, f64)> = s
         .eccentricity
         .iter()
@@ -494,7 +533,16 @@ fn draw_orbit(r: &MechanismResults, path: &Path) -> Result<(), String> {
     chart
         .draw_series(std::iter::once(Circle::new(pts[0], 8, BLACK.filled())))
         .map_err(err)?;
-    // Legend beside the circle.
+    Ok(())
+}
+
+/// The orbit plot's legend beside the circle: clearance, contact circle, journal centre, start.
+fn draw_orbit_legend(
+    legend_area: &Area<'_>,
+    r: &MechanismResults,
+    j: &LubricatedJointParams,
+) -> Result<(), String> {
+    let c = j.radial_clearance();
     let font = (FAMILY, 19).into_font();
     let rows: [(String, RGBColor, bool); 4] = [
         (
@@ -544,7 +592,7 @@ fn draw_orbit(r: &MechanismResults, path: &Path) -> Result<(), String> {
             .draw(&Text::new(label.clone(), (54, y - 10), font.clone()))
             .map_err(err)?;
     }
-    root.present().map_err(err)
+    Ok(())
 }
 
 #[cfg(test)]

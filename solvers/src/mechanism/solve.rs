@@ -12,7 +12,7 @@ use crate::closed_form::{ClosedFormModel, ClosedFormParams, JournalMotion, film_
 use crate::inverse::{FilmFields, FilmModel, OperatingConditions, ReynoldsFilm};
 use crate::reynolds::FilmState;
 use differential_equations::prelude::{
-    CrossingDirection, Event, EventConfig, IVP, ImplicitRungeKutta, ODE, Status,
+    CrossingDirection, Event, EventConfig, IVP, ImplicitRungeKutta, ODE, Solution, Status,
 };
 use std::cell::RefCell;
 
@@ -469,6 +469,8 @@ impl Event<f64, [f64; 4]> for RadauOde<'_, '_> {
     }
 }
 
+/// Radau5 with the contact events: integrate to the next onset or release (or the end), record
+/// the output samples passed, switch the contact mode at the event and restart from it.
 fn solve_radau(
     params: &MechanismParams,
     model: &JointModel<'_>,
@@ -476,49 +478,107 @@ fn solve_radau(
     rtol: f64,
     atol: f64,
 ) -> Result<MechanismSolution, MechanismError> {
-    let mech = &params.mechanism;
     let times = sample_times(params);
     let tf = *times.last().expect("at least 5 samples");
-    let tau = mech.period();
-    let w = mech.crank_speed.abs();
-    let c = model.c;
-    let floor = model.joint.contact.min_impact_speed;
-    let mut out = MechanismSolution::default();
-    let mut weights = Vec::with_capacity(times.len());
-    let (mut t0, mut y0) = (0.0, [0.0f64; 4]);
-    let mut impact = floor;
-    let mut in_contact = false;
-    let mut next = 0usize;
-    let mut info = MechanismInfo::default();
-    let mut events: Vec<ContactEvent> = Vec::new();
+    let mut run = RadauRun::new(model, times.len());
     loop {
-        let ode = RadauOde {
+        let ode = run.ode(model, film);
+        let sol = run.integrate(params, &ode, tf, &times[run.next..], rtol, atol)?;
+        let t_event = if matches!(sol.status, Status::Interrupted) {
+            sol.t.last().copied()
+        } else {
+            None
+        };
+        run.record_samples(params, &ode, &sol, &times, t_event)?;
+        match t_event {
+            Some(te) if run.next < times.len() => {
+                run.switch_contact(model, te, *sol.y.last().expect("event point"))?;
+                if te >= tf {
+                    break;
+                }
+            }
+            _ => break,
+        }
+    }
+    run.finish(params, model, times.len())
+}
+
+/// What a Radau5 run carries across its restarts at contact events.
+struct RadauRun {
+    /// Start of the next segment: time and state (ε, dε/dt).
+    t0: f64,
+    y0: [f64; 4],
+    /// Impact velocity of the current contact (the floor outside contact).
+    impact: f64,
+    in_contact: bool,
+    /// Index of the next output sample to record.
+    next: usize,
+    info: MechanismInfo,
+    events: Vec<ContactEvent>,
+    out: MechanismSolution,
+    weights: Vec<f64>,
+}
+
+impl RadauRun {
+    /// Centred journal at rest at t = 0, out of contact.
+    fn new(model: &JointModel<'_>, samples: usize) -> Self {
+        Self {
+            t0: 0.0,
+            y0: [0.0; 4],
+            impact: model.joint.contact.min_impact_speed,
+            in_contact: false,
+            next: 0,
+            info: MechanismInfo::default(),
+            events: Vec::new(),
+            out: MechanismSolution::default(),
+            weights: Vec::with_capacity(samples),
+        }
+    }
+
+    /// The equations of the next segment, with the event of the current contact mode.
+    fn ode<'m, 'a>(&self, model: &'m JointModel<'a>, film: ClosedFormModel) -> RadauOde<'m, 'a> {
+        RadauOde {
             model,
             film,
-            impact_speed: impact,
+            impact_speed: self.impact,
             error: RefCell::new(None),
-            event_level: if in_contact {
-                model.release_radius / c
+            event_level: if self.in_contact {
+                model.release_radius / model.c
             } else {
-                model.contact_radius / c
+                model.contact_radius / model.c
             },
-            in_contact,
-        };
-        let pending: Vec<f64> = times[next..].to_vec();
+            in_contact: self.in_contact,
+        }
+    }
+
+    /// One segment from `t0` to the end or the first event, sampled at `pending`; counts its
+    /// steps and evaluations. A film error or an integrator failure ends the run.
+    fn integrate(
+        &mut self,
+        params: &MechanismParams,
+        ode: &RadauOde<'_, '_>,
+        tf: f64,
+        pending: &[f64],
+        rtol: f64,
+        atol: f64,
+    ) -> Result<Solution<f64, [f64; 4]>, MechanismError> {
+        let tau = params.mechanism.period();
+        let w = params.mechanism.crank_speed.abs();
         let method = ImplicitRungeKutta::radau5()
             .rtol(rtol)
             .atol([atol, atol, atol * w, atol * w])
             .h_max(tau / params.samples_per_turn as f64)
             .h0(1e-8 * tau)
             .max_steps(10_000_000);
-        let result = IVP::ode(&ode, t0, tf + 1e-9 * tau, y0)
-            .t_eval(&pending)
-            .event(&ode)
+        let result = IVP::ode(ode, self.t0, tf + 1e-9 * tau, self.y0)
+            .t_eval(pending)
+            .event(ode)
             .method(method)
             .solve();
         if let Some(err) = ode.error.borrow_mut().take() {
             return Err(err);
         }
+        let t0 = self.t0;
         let sol = result.map_err(|err| {
             use differential_equations::prelude::Error as E;
             let (time, reason) = match &err {
@@ -529,25 +589,34 @@ fn solve_radau(
             };
             MechanismError::Integration {
                 time,
-                crank_angle_deg: model.crank_deg(time),
+                crank_angle_deg: ode.model.crank_deg(time),
                 reason,
             }
         })?;
-        info.steps += sol.steps.accepted;
-        info.rejected_steps += sol.steps.rejected;
-        info.evaluations += sol.evals.function;
-        let interrupted = matches!(sol.status, Status::Interrupted);
+        self.info.steps += sol.steps.accepted;
+        self.info.rejected_steps += sol.steps.rejected;
+        self.info.evaluations += sol.evals.function;
+        Ok(sol)
+    }
+
+    /// The output samples the segment passed before its event (those after it are redone after
+    /// the restart), with the loads and the contact weight at each.
+    fn record_samples(
+        &mut self,
+        params: &MechanismParams,
+        ode: &RadauOde<'_, '_>,
+        sol: &Solution<f64, [f64; 4]>,
+        times: &[f64],
+        t_event: Option<f64>,
+    ) -> Result<(), MechanismError> {
+        let tau = params.mechanism.period();
+        let c = ode.model.c;
         let n_points = sol.t.len();
-        let t_event = if interrupted {
-            sol.t.last().copied()
-        } else {
-            None
-        };
         for (i, (t, y)) in sol.t.iter().zip(&sol.y).enumerate() {
-            if interrupted && i + 1 == n_points {
+            if t_event.is_some() && i + 1 == n_points {
                 break; // the event point
             }
-            if next >= times.len() {
+            if self.next >= times.len() {
                 break;
             }
             if let Some(te) = t_event
@@ -555,75 +624,99 @@ fn solve_radau(
             {
                 break; // samples past the event are redone after the restart
             }
-            if (t - times[next]).abs() > 1e-9 * tau {
+            if (t - times[self.next]).abs() > 1e-9 * tau {
                 continue;
             }
-            let (_, k, acc, f) = ode.evaluate(times[next], y)?;
-            out.push_sample(
-                mech,
+            let (_, k, acc, f) = ode.evaluate(times[self.next], y)?;
+            self.out.push_sample(
+                &params.mechanism,
                 &k,
                 acc,
                 (f.total, f.torque),
                 [c * y[0], c * y[1]],
                 [c * y[2], c * y[3]],
             );
-            weights.push(f.weight);
-            next += 1;
+            self.weights.push(f.weight);
+            self.next += 1;
         }
-        match t_event {
-            Some(te) if next < times.len() => {
-                let y = *sol.y.last().expect("event point");
-                let e = y[0].hypot(y[1]).max(f64::MIN_POSITIVE);
-                let radial = c * (y[0] * y[2] + y[1] * y[3]) / e;
-                let kind = if in_contact {
-                    ContactEventKind::Release
-                } else {
-                    impact = radial.max(floor);
-                    ContactEventKind::Onset
-                };
-                in_contact = !in_contact;
-                if events.len() >= MAX_CONTACT_EVENTS {
-                    return Err(MechanismError::Integration {
-                        time: te,
-                        crank_angle_deg: model.crank_deg(te),
-                        reason: format!(
-                            "more than {MAX_CONTACT_EVENTS} contact events (chattering contact)"
-                        ),
-                    });
-                }
-                events.push(ContactEvent {
-                    time: te,
-                    crank_angle_deg: model.crank_deg(te),
-                    kind,
-                    radial_velocity: radial,
-                });
-                t0 = te;
-                y0 = y;
-                if te >= tf {
-                    break;
-                }
-            }
-            _ => break,
-        }
+        Ok(())
     }
-    if next != times.len() {
-        return Err(MechanismError::Integration {
-            time: out.time.last().copied().unwrap_or(0.0),
-            crank_angle_deg: model.crank_deg(out.time.last().copied().unwrap_or(0.0)),
-            reason: format!("{next} of {} output samples produced", times.len()),
+
+    /// At the event time `te` with state `y`: record the onset (its impact velocity, floored)
+    /// or the release, switch the contact mode and restart from there. Chattering contact
+    /// (more than [`MAX_CONTACT_EVENTS`]) is an error.
+    fn switch_contact(
+        &mut self,
+        model: &JointModel<'_>,
+        te: f64,
+        y: [f64; 4],
+    ) -> Result<(), MechanismError> {
+        let c = model.c;
+        let e = y[0].hypot(y[1]).max(f64::MIN_POSITIVE);
+        let radial = c * (y[0] * y[2] + y[1] * y[3]) / e;
+        let kind = if self.in_contact {
+            ContactEventKind::Release
+        } else {
+            self.impact = radial.max(model.joint.contact.min_impact_speed);
+            ContactEventKind::Onset
+        };
+        self.in_contact = !self.in_contact;
+        if self.events.len() >= MAX_CONTACT_EVENTS {
+            return Err(MechanismError::Integration {
+                time: te,
+                crank_angle_deg: model.crank_deg(te),
+                reason: format!(
+                    "more than {MAX_CONTACT_EVENTS} contact events (chattering contact)"
+                ),
+            });
+        }
+        self.events.push(ContactEvent {
+            time: te,
+            crank_angle_deg: model.crank_deg(te),
+            kind,
+            radial_velocity: radial,
         });
+        self.t0 = te;
+        self.y0 = y;
+        Ok(())
     }
-    out.min_film_thickness = out
-        .eccentricity
-        .iter()
-        .map(|e| c - e[0].hypot(e[1]))
-        .collect();
-    out.contact_weight = weights;
-    out.contact_events = events;
-    out.info = info;
-    out.check_finite()?;
-    out.finish(Some(c), Some(params.samples_per_turn));
-    Ok(out)
+
+    /// The solution: every sample produced (else an error), h_min, contact weights, events and
+    /// counts, checked finite.
+    fn finish(
+        self,
+        params: &MechanismParams,
+        model: &JointModel<'_>,
+        samples: usize,
+    ) -> Result<MechanismSolution, MechanismError> {
+        let Self {
+            mut out,
+            next,
+            weights,
+            events,
+            info,
+            ..
+        } = self;
+        let c = model.c;
+        if next != samples {
+            return Err(MechanismError::Integration {
+                time: out.time.last().copied().unwrap_or(0.0),
+                crank_angle_deg: model.crank_deg(out.time.last().copied().unwrap_or(0.0)),
+                reason: format!("{next} of {samples} output samples produced"),
+            });
+        }
+        out.min_film_thickness = out
+            .eccentricity
+            .iter()
+            .map(|e| c - e[0].hypot(e[1]))
+            .collect();
+        out.contact_weight = weights;
+        out.contact_events = events;
+        out.info = info;
+        out.check_finite()?;
+        out.finish(Some(c), Some(params.samples_per_turn));
+        Ok(out)
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
