@@ -21,8 +21,8 @@ use jbearing_solvers::mobility::{
 use jbearing_solvers::closed_form::{ClosedFormFilm, ClosedFormModel, ClosedFormParams};
 use jbearing_solvers::elastic::ElasticParams;
 use jbearing_solvers::inverse::{
-    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, InverseStart,
-    InverseWarning, ReynoldsFilm, solve_inverse_from,
+    InverseObserver, InverseParams, InversePhase, InverseProgress, InverseSolution, InverseStall,
+    InverseStart, InverseWarning, ReynoldsFilm, solve_inverse_from,
 };
 use jbearing_solvers::load::LoadHistory;
 use jbearing_solvers::reynolds::{
@@ -782,6 +782,26 @@ impl InverseObserver for InverseAdapter<'_> {
                 p.residual,
             );
         }
+    }
+    fn on_stall(&mut self, s: &InverseStall) {
+        let film: Vec<String> = s.film.iter().map(|(k, v)| format!("{k} {v:.3e}")).collect();
+        tracing::info!(
+            case = self.case,
+            "rigorous: stalled step, cycle {}, t = {:.6e} s, crank angle {:.1}°, dt = {:.3e} s: \
+             residual {:.3e} (tolerance {:.1e}, scale {:.4e} N) after {} Newton iterations, \
+             ε = ({:.6}, {:.6}); film: {}",
+            s.cycle,
+            s.time,
+            s.crank_angle_deg,
+            s.dt,
+            s.residual,
+            s.tolerance,
+            s.scale,
+            s.newton_iterations,
+            s.eccentricity_ratio[0],
+            s.eccentricity_ratio[1],
+            film.join(", ")
+        );
     }
     fn on_cycle(&mut self, cycle: usize, eccentricity_change: f64, film: f64) {
         tracing::info!(

@@ -71,8 +71,8 @@ pub use crate::time_scheme::{JournalMotion, TimeScheme};
 pub use solve::{InverseStart, solve_inverse, solve_inverse_from};
 pub use types::{
     CycleSummary, FieldSnapshot, InverseError, InverseInfo, InverseObserver, InverseParams,
-    InversePhase, InverseProgress, InverseSolution, InverseStep, InverseWarning, JacobianMethod,
-    NoObserver,
+    InversePhase, InverseProgress, InverseSolution, InverseStall, InverseStep, InverseWarning,
+    JacobianMethod, NoObserver,
 };
 
 pub use crate::reynolds::OperatingConditions;
@@ -191,5 +191,12 @@ pub trait FilmModel {
     /// a model that has none (the inverse solver then takes forward differences).
     fn force_jacobian(&mut self) -> Option<Result<[[f64; 2]; 2], FilmModelError>> {
         None
+    }
+
+    /// Named measures of the last step this model solved (its inner iterations, what changed
+    /// between them), for the report of a stalled Newton ([`InverseStall::film`]). Default
+    /// none.
+    fn step_diagnostics(&self) -> Vec<(&'static str, f64)> {
+        Vec::new()
     }
 }

@@ -206,6 +206,7 @@ where
             valid: false,
         },
         stats: Stats::default(),
+        stalls: Vec::new(),
     };
     let mut orbit = match start_from {
         Some(s) => Orbit {
@@ -582,6 +583,8 @@ struct Stepper<'p> {
     w_ref: f64,
     jac: Jacobian,
     stats: Stats,
+    /// Steps accepted as stalls since the observer last heard of them.
+    stalls: Vec<InverseStall>,
 }
 
 /// One step to take: from ε at `t_end − dt` to `t_end`, Newton started at `guess`.
@@ -660,6 +663,9 @@ impl<S: Clone> Orbit<S> {
                 cycle: 0,
             };
             let step = self.march_step(stepper, film, dt, &ramp, at, false)?;
+            for stall in stepper.stalls.drain(..) {
+                observer.on_stall(&stall);
+            }
             observer.on_step(&InverseProgress {
                 phase: InversePhase::RunIn,
                 step: k,
@@ -765,6 +771,9 @@ impl<S: Clone> Orbit<S> {
             // snapshots at stride·Δ, 2·stride·Δ, …, including the cycle's end (= its start).
             let capture = params.field_stride > 0 && (i + 1) % params.field_stride == 0;
             let step = self.march_step(stepper, film, grid.dt, &drive, at, capture)?;
+            for stall in stepper.stalls.drain(..) {
+                observer.on_stall(&stall);
+            }
             if let Some(fields) = step.fields {
                 snapshots.push(FieldSnapshot {
                     step_index: i,
@@ -945,7 +954,7 @@ impl Stepper<'_> {
                 return Ok(self.accept(cur, iterations));
             }
             if iterations >= params.max_newton_iterations {
-                return self.give_up(&problem, cur, iterations);
+                return self.give_up(&problem, cur, iterations, film);
             }
             iterations += 1;
             if self.refresh_jacobian(film, &problem, &cur, &mut last_solved, &mut fd_h)? {
@@ -968,7 +977,7 @@ impl Stepper<'_> {
                     fd_h = (100.0 * params.fd_step).max(1e-3);
                     self.jac.valid = false;
                 }
-                None if fresh => return self.give_up(&problem, cur, iterations),
+                None if fresh => return self.give_up(&problem, cur, iterations, film),
                 None => self.jac.valid = false,
             }
         }
@@ -1089,13 +1098,15 @@ impl Stepper<'_> {
 
     /// Newton could not reach `tolerance`: the best point is accepted as a stall if within
     /// `accept_tolerance`, else the step fails. (|ε| below the collapse limit was checked at
-    /// the top of the iteration that produced it.)
-    fn give_up<S>(
+    /// the top of the iteration that produced it.) A stall is kept for the observer
+    /// ([`InverseObserver::on_stall`]) with the film's diagnostics of its last step.
+    fn give_up<F: FilmModel + ?Sized>(
         &mut self,
-        problem: &StepProblem<'_, S>,
-        cur: Iterate<S>,
+        problem: &StepProblem<'_, F::State>,
+        cur: Iterate<F::State>,
         iterations: usize,
-    ) -> Result<Accepted<S>, InverseError> {
+        film: &F,
+    ) -> Result<Accepted<F::State>, InverseError> {
         let params = self.params;
         self.stats.newton += iterations;
         if cur.res > params.accept_tolerance {
@@ -1110,6 +1121,19 @@ impl Stepper<'_> {
         if cur.response.min_film_thickness < params.min_film_floor {
             return Err(problem.collapse(&cur));
         }
+        let at = problem.target.at;
+        self.stalls.push(InverseStall {
+            time: at.time,
+            crank_angle_deg: at.crank_angle_deg,
+            cycle: at.cycle,
+            dt: problem.target.dt,
+            residual: cur.res,
+            tolerance: params.tolerance,
+            scale: problem.scale,
+            newton_iterations: iterations,
+            eccentricity_ratio: cur.eps,
+            film: film.step_diagnostics(),
+        });
         Ok(cur.accepted(iterations))
     }
 }

@@ -141,11 +141,40 @@ pub trait InverseObserver {
     fn on_step(&mut self, _progress: &InverseProgress) {}
     /// After every load cycle, with the periodicity measures of that cycle.
     fn on_cycle(&mut self, _cycle: usize, _eccentricity_change: f64, _film_state_change: f64) {}
+    /// A step accepted as a stall ([`InverseParams::accept_tolerance`]), before its
+    /// [`InverseObserver::on_step`].
+    fn on_stall(&mut self, _stall: &InverseStall) {}
     /// Asked after every accepted time step: `true` stops the solve with
     /// [`InverseError::Interrupted`] (a user's Ctrl-C, a time budget).
     fn stop_requested(&mut self) -> bool {
         false
     }
+}
+
+/// A time step whose Newton stalled above [`InverseParams::tolerance`] and was accepted at
+/// its best point ([`InverseInfo::stalled_steps`]): where, how far, and what the film model
+/// reports of its last step ([`super::FilmModel::step_diagnostics`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct InverseStall {
+    /// End of the step (s; negative during the run-in) and its crank angle (deg).
+    pub time: f64,
+    pub crank_angle_deg: f64,
+    /// Load cycle (0: the run-in).
+    pub cycle: usize,
+    /// Length of the step (s; shorter than the cycle's step inside a halved step).
+    pub dt: f64,
+    /// |F + W| / max(|W|, W_ref) at the accepted point, and the tolerance it missed.
+    pub residual: f64,
+    pub tolerance: f64,
+    /// max(|W|, W_ref) of the step (N).
+    pub scale: f64,
+    /// Newton iterations taken.
+    pub newton_iterations: usize,
+    /// ε accepted.
+    pub eccentricity_ratio: [f64; 2],
+    /// The film model's measures of its last step (the last trial solved, which need not be
+    /// the accepted one).
+    pub film: Vec<(&'static str, f64)>,
 }
 
 /// An observer that ignores everything.

@@ -42,7 +42,7 @@ const ELASTIC_CASES: [(&str, &str, bool); 3] = [
     ("compressor_rod_rigid87", "rigid", true),
     (
         "compressor_rod_elastic",
-        "elastic (gap tolerance 1e-7 c)",
+        "elastic (gap tolerance 1e-8 c)",
         true,
     ),
     (
@@ -270,6 +270,32 @@ impl RunStats {
 
 /// The elastic compressor-rod table (module docs) into docs/validation.md with `write_docs`.
 fn elastic_table(results: &Path, write_docs: bool) -> Result<()> {
+    let (started, rows) = elastic_rows(results)?;
+    report!(
+        "Machine: {}. Runs (release build, `jbearing run`, one case at a time or several in parallel \
+         on the shared machine, so the wall times are upper bounds) started: {}.\n",
+        machine(),
+        started.join("; "),
+    );
+    for row in rows {
+        report!("{row}");
+    }
+    if write_docs {
+        let page = docs_page("validation.md");
+        write_generated_block(&page, ELASTIC_COMMAND, &take_report())
+            .with_context(|| format!("writing the block into {}", page.display()))?;
+        eprintln!(
+            "wrote the block of {ELASTIC_COMMAND:?} in {}",
+            page.display()
+        );
+    }
+    Ok(())
+}
+
+/// The elastic table's runs ("label start time") and rows (header, separator, one row per run
+/// of [`ELASTIC_CASES`] found in `results`); an error naming the file when a required run's
+/// summary or HDF5 file is missing or lacks a value.
+fn elastic_rows(results: &Path) -> Result<(Vec<String>, Vec<String>)> {
     let mut rows = Vec::new();
     for (case, label, required) in ELASTIC_CASES {
         let summary = results.join(format!("{case}_summary.csv"));
@@ -288,16 +314,10 @@ fn elastic_table(results: &Path, write_docs: bool) -> Result<()> {
         .iter()
         .map(|(l, _, r)| format!("{l} {}", r.started))
         .collect();
-    report!(
-        "Machine: {}. Runs (release build, `jbearing run`, one case at a time or two in parallel \
-         on the shared machine, so the wall times are upper bounds) started: {}.\n",
-        machine(),
-        started.join("; "),
-    );
-    report!(
-        "| film | h_min, cycle min [µm] | ε max | power loss, mean [W] | side flow, mean [cm³/s] | cycles (periodic) | stalled steps (max residual / load) | film step evaluations | Jacobians | wall time per cycle | status |"
-    );
-    report!("|---|---|---|---|---|---|---|---|---|---|---|");
+    let mut table = vec![
+        "| film | h_min, cycle min [µm] | ε max | power loss, mean [W] | side flow, mean [cm³/s] | cycles (periodic) | stalled steps (max residual / load) | film step evaluations | Jacobians | wall time per cycle | status |".to_string(),
+        "|---|---|---|---|---|---|---|---|---|---|---|".to_string(),
+    ];
     let rigid_hmin = rows[0].1.number("min_film_thickness_min", 0, 1e6)?;
     for (i, (label, s, r)) in rows.iter().enumerate() {
         let hmin = s.number("min_film_thickness_min", 0, 1e6)?;
@@ -319,7 +339,7 @@ fn elastic_table(results: &Path, write_docs: bool) -> Result<()> {
                 jbearing_validation::generated_docs::sci(r.max_stalled_residual, 1)
             )
         };
-        report!(
+        table.push(format!(
             "| {label} | {hmin} | {} | {} | {} | {} ({}) | {stalled} | {} | {} | {} s | {} |",
             fixed(s.number("eccentricity_ratio_max", 0, 1.0)?, 4),
             fixed(s.number("power_loss_mean", 0, 1.0)?, 2),
@@ -330,18 +350,9 @@ fn elastic_table(results: &Path, write_docs: bool) -> Result<()> {
             r.jacobian_evaluations,
             fixed(r.wall_time / r.cycles.max(1) as f64, 1),
             s.cell("status", 0).unwrap_or("not run"),
-        );
+        ));
     }
-    if write_docs {
-        let page = docs_page("validation.md");
-        write_generated_block(&page, ELASTIC_COMMAND, &take_report())
-            .with_context(|| format!("writing the block into {}", page.display()))?;
-        eprintln!(
-            "wrote the block of {ELASTIC_COMMAND:?} in {}",
-            page.display()
-        );
-    }
-    Ok(())
+    Ok((started, table))
 }
 
 #[cfg(test)]
@@ -418,6 +429,153 @@ mod tests {
             "| compressor_rod | rigorous (JFO, inverse) | 87.3 / 95.0 | 9.8 | 3.83 | 0.850 | 6.318 | 56.3 | 123.45 | ok |"
         );
         assert!(rows[5].ends_with("| not periodic |"), "{}", rows[5]);
+    }
+
+    /// A run's `CASE.h5` as far as the elastic table reads it: the file's `wall_time_s` and
+    /// `started_utc`, the rigorous group's statistics attributes (the types the application
+    /// writes: integers i64, flags i8).
+    fn run_h5(path: &Path, wall_time: f64, stats: [i64; 4], periodic: bool, max_stalled: f64) {
+        use hdf5_metno::types::VarLenUnicode;
+        let f = hdf5_metno::File::create(path).unwrap();
+        f.new_attr::<f64>()
+            .shape(())
+            .create("wall_time_s")
+            .unwrap()
+            .write_scalar(&wall_time)
+            .unwrap();
+        let started: VarLenUnicode = "2026-11-27T01:00:00Z".parse().unwrap();
+        f.new_attr::<VarLenUnicode>()
+            .shape(())
+            .create("started_utc")
+            .unwrap()
+            .write_scalar(&started)
+            .unwrap();
+        let g = f.create_group("rigorous").unwrap();
+        let names = [
+            "cycles",
+            "stalled_steps",
+            "film_evaluations",
+            "jacobian_evaluations",
+        ];
+        for (name, v) in names.iter().zip(stats) {
+            g.new_attr::<i64>()
+                .shape(())
+                .create(*name)
+                .unwrap()
+                .write_scalar(&v)
+                .unwrap();
+        }
+        g.new_attr::<i8>()
+            .shape(())
+            .create("periodic")
+            .unwrap()
+            .write_scalar(&i8::from(periodic))
+            .unwrap();
+        g.new_attr::<f64>()
+            .shape(())
+            .create("max_stalled_residual")
+            .unwrap()
+            .write_scalar(&max_stalled)
+            .unwrap();
+    }
+
+    #[test]
+    fn elastic_rows_carry_the_summaries_and_the_run_statistics() {
+        let dir = TempDir::new("elastic");
+        let (rigid, elastic) = (ELASTIC_CASES[0].0, ELASTIC_CASES[1].0);
+        std::fs::write(
+            dir.0.join(format!("{rigid}_summary.csv")),
+            summary("3.821e-6", "ok"),
+        )
+        .unwrap();
+        std::fs::write(
+            dir.0.join(format!("{elastic}_summary.csv")),
+            summary("4.0102e-6", "ok"),
+        )
+        .unwrap();
+        run_h5(
+            &dir.0.join(format!("{rigid}.h5")),
+            166.8,
+            [12, 0, 12782, 1567],
+            true,
+            0.0,
+        );
+        run_h5(
+            &dir.0.join(format!("{elastic}.h5")),
+            901.2,
+            [12, 65, 16526, 4997],
+            false,
+            7.24e-6,
+        );
+        let (started, rows) = elastic_rows(&dir.0).unwrap();
+        // The optional looser-gap run has no files here: two rows.
+        assert_eq!(rows.len(), 2 + 2, "{rows:#?}");
+        assert_eq!(started.len(), 2);
+        assert!(
+            started[0].ends_with(" 2026-11-27T01:00:00Z"),
+            "{}",
+            started[0]
+        );
+        assert!(rows[0].starts_with("| film |"));
+        // By hand: h_min m → µm, the elastic row's change against the rigid one
+        // (4.0102 / 3.821 − 1 = +4.95 % → +5.0 % at one decimal), wall time per cycle 166.8 / 12 = 13.9 s and
+        // 901.2 / 12 = 75.1 s, the stall count with its largest residual.
+        assert_eq!(
+            rows[2],
+            format!(
+                "| {} | 3.821 | 0.8504 | 56.30 | 6.3183 | 12 (yes) | 0 | 12782 | 1567 | 13.9 s | ok |",
+                ELASTIC_CASES[0].1
+            )
+        );
+        assert_eq!(
+            rows[3],
+            format!(
+                "| {} | 4.010 (+5.0 %) | 0.8504 | 56.30 | 6.3183 | 12 (no) | 65 (7.2e-6) | 16526 | 4997 | 75.1 s | ok |",
+                ELASTIC_CASES[1].1
+            )
+        );
+    }
+
+    #[test]
+    fn a_missing_elastic_run_is_an_error_naming_the_file() {
+        let dir = TempDir::new("elastic-missing");
+        let (rigid, elastic) = (ELASTIC_CASES[0].0, ELASTIC_CASES[1].0);
+        std::fs::write(
+            dir.0.join(format!("{rigid}_summary.csv")),
+            summary("3.821e-6", "ok"),
+        )
+        .unwrap();
+        run_h5(
+            &dir.0.join(format!("{rigid}.h5")),
+            166.8,
+            [12, 0, 12782, 1567],
+            true,
+            0.0,
+        );
+        // The elastic run's summary is missing.
+        let err = format!("{:#}", elastic_rows(&dir.0).unwrap_err());
+        assert!(
+            err.contains(&format!("{elastic}_summary.csv"))
+                && err.contains(&format!("run cases/{elastic}.toml")),
+            "{err}"
+        );
+        // Its summary is there but not its HDF5 file.
+        std::fs::write(
+            dir.0.join(format!("{elastic}_summary.csv")),
+            summary("4.0102e-6", "ok"),
+        )
+        .unwrap();
+        let err = format!("{:#}", elastic_rows(&dir.0).unwrap_err());
+        assert!(err.contains(&format!("{elastic}.h5")), "{err}");
+        // An HDF5 file without the statistics the table needs.
+        let f = hdf5_metno::File::create(dir.0.join(format!("{elastic}.h5"))).unwrap();
+        f.create_group("rigorous").unwrap();
+        drop(f);
+        let err = format!("{:#}", elastic_rows(&dir.0).unwrap_err());
+        assert!(
+            err.contains(&format!("{elastic}.h5")) && err.contains("wall_time_s"),
+            "{err}"
+        );
     }
 
     #[test]
