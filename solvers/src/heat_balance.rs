@@ -296,16 +296,7 @@ where
     };
     let mut last_point: Option<(f64, f64)> = None;
     for iteration in 1..=params.max_iterations {
-        let (result, flows) = solve(t).map_err(|source| HeatBalanceError::Solve {
-            iteration,
-            temperature: t,
-            source,
-        })?;
-        let balance = params.balance(&flows).ok_or(HeatBalanceError::NoOilFlow {
-            temperature: t,
-            power_loss: flows.power_loss,
-            side_leakage: flows.side_leakage,
-        })?;
+        let (result, flows, balance) = balance_at(params, &mut solve, iteration, t)?;
         let r = balance.effective - t;
         iterates.push(HeatBalanceIterate {
             temperature: t,
@@ -331,33 +322,12 @@ where
         } else {
             hi = hi.min(x);
         }
-        // Slope df/dx: the secant through the last two iterates; at the first, from the
-        // caller's dr/dT (df/dx = (T − T_in)(r' + 1)/(T_bal − T_in) − 1), or −2 (a rise
-        // inversely proportional to T − T_in) when none is given.
-        let secant = match last_point {
-            Some((xa, fa)) if x != xa => (f - fa) / (x - xa),
-            _ => slope
-                .filter(|s| s.is_finite())
-                .map(|s| (t - t_in) * (s + 1.0) / (balance.effective - t_in).max(floor) - 1.0)
-                .unwrap_or(-2.0),
-        };
-        let secant = if secant < 0.0 && secant.is_finite() {
-            secant
-        } else {
-            -2.0
-        };
+        // The caller's dr/dT as df/dx = (T − T_in)(r' + 1)/(T_bal − T_in) − 1 (no secant yet).
+        let first_slope = slope
+            .filter(|s| s.is_finite())
+            .map(|s| (t - t_in) * (s + 1.0) / (balance.effective - t_in).max(floor) - 1.0);
+        let next = secant_step((x, f), last_point, first_slope, (lo, hi));
         last_point = Some((x, f));
-        let mut next = x - f / secant;
-        // Keep the step inside the bracket: bisect when both ends are known, else move at
-        // most a factor e² in T − T_in past the known end.
-        if !(next > lo && next < hi) {
-            next = match (lo.is_finite(), hi.is_finite()) {
-                (true, true) => 0.5 * (lo + hi),
-                (true, false) => lo + 2.0,
-                (false, true) => hi - 2.0,
-                (false, false) => x,
-            };
-        }
         t = t_in + next.exp();
     }
     let last = iterates.last().expect("at least two iterations");
@@ -367,6 +337,63 @@ where
         residual: (last.balance.effective - last.temperature).abs(),
         tolerance: params.tolerance,
     })
+}
+
+/// One trial of [`solve_heat_balance`]: the film at T (its result and flows) and the balance
+/// temperatures (1)–(3) of its flows.
+fn balance_at<R, E, S>(
+    params: &HeatBalanceParams,
+    solve: &mut S,
+    iteration: usize,
+    t: f64,
+) -> Result<(R, HeatFlows, BalanceTemperatures), HeatBalanceError<E>>
+where
+    E: std::error::Error + 'static,
+    S: FnMut(f64) -> Result<(R, HeatFlows), E>,
+{
+    let (result, flows) = solve(t).map_err(|source| HeatBalanceError::Solve {
+        iteration,
+        temperature: t,
+        source,
+    })?;
+    let balance = params.balance(&flows).ok_or(HeatBalanceError::NoOilFlow {
+        temperature: t,
+        power_loss: flows.power_loss,
+        side_leakage: flows.side_leakage,
+    })?;
+    Ok((result, flows, balance))
+}
+
+/// The safeguarded secant step of [`solve_heat_balance`] (module docs, "The iteration"): the
+/// next x = ln(T − T_in) from the iterate (x, f), with the slope df/dx of the secant through
+/// the previous iterate, else the caller's `first_slope`, else −2 (a rise inversely
+/// proportional to T − T_in); kept inside the bracket (lo, hi) in x by bisecting when both
+/// ends are known, else moving at most a factor e² in T − T_in past the known end.
+fn secant_step(
+    (x, f): (f64, f64),
+    last_point: Option<(f64, f64)>,
+    first_slope: Option<f64>,
+    (lo, hi): (f64, f64),
+) -> f64 {
+    let secant = match last_point {
+        Some((xa, fa)) if x != xa => (f - fa) / (x - xa),
+        _ => first_slope.unwrap_or(-2.0),
+    };
+    let secant = if secant < 0.0 && secant.is_finite() {
+        secant
+    } else {
+        -2.0
+    };
+    let next = x - f / secant;
+    if next > lo && next < hi {
+        return next;
+    }
+    match (lo.is_finite(), hi.is_finite()) {
+        (true, true) => 0.5 * (lo + hi),
+        (true, false) => lo + 2.0,
+        (false, true) => hi - 2.0,
+        (false, false) => x,
+    }
 }
 
 #[cfg(test)]

@@ -80,39 +80,14 @@ pub fn static_equilibrium(
     }
     let omega = relative_speed.abs();
     let mirror = relative_speed < 0.0;
-    let at = |eps: f64| film_force(model, params, &JournalMotion::steady(eps, 0.0, omega));
-    let magnitude = |eps: f64| -> Result<f64, ClosedFormError> {
-        let f = at(eps)?;
-        Ok(f.radial.hypot(f.tangential))
-    };
-    let (mut lo, mut hi) = (0.0, MAX_ECCENTRICITY);
-    let capacity = magnitude(hi)?;
-    if capacity < w {
-        return Err(ClosedFormError::FilmCollapse {
-            model: model.name(),
-            load: w,
-            limit: MAX_ECCENTRICITY,
-            capacity,
-        });
-    }
-    let mut iterations = 0;
-    let eps = if w == 0.0 {
-        0.0
-    } else {
-        while hi - lo > 1e-15 && iterations < 200 {
-            iterations += 1;
-            let mid = 0.5 * (lo + hi);
-            if magnitude(mid)? < w {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        0.5 * (lo + hi)
-    };
-    // Direction: solve in the (possibly mirrored) frame where ω > 0.
+    let (eps, iterations) = eccentricity_for_load(model, params, w, omega)?;
+    // Steps 2 and 3, the direction: solve in the (possibly mirrored) frame where ω > 0.
     let wm = if mirror { [load[0], -load[1]] } else { load };
-    let f0 = at(eps.max(1e-300))?;
+    let f0 = film_force(
+        model,
+        params,
+        &JournalMotion::steady(eps.max(1e-300), 0.0, omega),
+    )?;
     let beta = f0.tangential.atan2(f0.radial);
     let load_angle = wm[1].atan2(wm[0]);
     let gamma_m = load_angle + PI - beta;
@@ -143,6 +118,45 @@ pub fn static_equilibrium(
         sommerfeld_number,
         iterations,
     })
+}
+
+/// Step 1 of the module docs: ε ∈ [0, [`MAX_ECCENTRICITY`]] with |F|(ε) = `w` at rest at speed
+/// `omega` > 0, by bisection to 1e-15 (at most 200 steps), with the steps taken; a load above
+/// the film's capacity at the limit is a film collapse.
+fn eccentricity_for_load(
+    model: ClosedFormModel,
+    params: &ClosedFormParams,
+    w: f64,
+    omega: f64,
+) -> Result<(f64, usize), ClosedFormError> {
+    let magnitude = |eps: f64| -> Result<f64, ClosedFormError> {
+        let f = film_force(model, params, &JournalMotion::steady(eps, 0.0, omega))?;
+        Ok(f.radial.hypot(f.tangential))
+    };
+    let (mut lo, mut hi) = (0.0, MAX_ECCENTRICITY);
+    let capacity = magnitude(hi)?;
+    if capacity < w {
+        return Err(ClosedFormError::FilmCollapse {
+            model: model.name(),
+            load: w,
+            limit: MAX_ECCENTRICITY,
+            capacity,
+        });
+    }
+    let mut iterations = 0;
+    if w == 0.0 {
+        return Ok((0.0, iterations));
+    }
+    while hi - lo > 1e-15 && iterations < 200 {
+        iterations += 1;
+        let mid = 0.5 * (lo + hi);
+        if magnitude(mid)? < w {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok((0.5 * (lo + hi), iterations))
 }
 
 /// Angle wrapped to (−π, π].

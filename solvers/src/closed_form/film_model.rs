@@ -110,40 +110,12 @@ impl ClosedFormFilm {
         let wbar = 0.5 * omega;
         // Squeeze velocity u = v/c = ε̇ − ω̄ × ε (1/s).
         let u = [rate[0] + wbar * eps[1], rate[1] - wbar * eps[0]];
-        let (mut p_max, mut p_at) = (0.0f64, 0.0);
-        match self.model {
-            ClosedFormModel::PinkusSternlicht => {}
-            ClosedFormModel::ShortGumbelMovingFilm => {
-                (p_max, p_at) = moving_film_peak_pressure(p, eps, u);
-            }
-            _ => {
-                for i in 0..720 {
-                    let th = i as f64 * TAU / 720.0;
-                    let v = pressure(self.model, p, &motion, th, 0.0)?;
-                    if v > p_max {
-                        p_max = v;
-                        p_at = th;
-                    }
-                }
-            }
-        }
+        let (p_max, p_at) = self.peak_pressure(eps, u, &motion)?;
         let half = !matches!(
             self.model,
             ClosedFormModel::ShortSommerfeld | ClosedFormModel::LongSommerfeld
         );
-        let (r, l) = (p.radius, p.length);
-        // ∫ [ω' ε sin ψ − 2ε̇ cos ψ] dψ over the film region of the short models.
-        let (a, b) = (
-            motion.wedge_speed() * motion.eccentricity_ratio,
-            -2.0 * motion.eccentricity_ratio_rate,
-        );
-        let region_integral = match self.model {
-            ClosedFormModel::ShortSommerfeld => 0.0,
-            ClosedFormModel::ShortGumbel => 2.0 * a, // ∫_0^π: 2a + 0·b
-            ClosedFormModel::ShortGumbelMovingFilm => 2.0 * a.hypot(b),
-            _ => 0.0,
-        };
-        let end_flow = 0.25 * c * l * r * region_integral;
+        let end_flow = self.end_flow(&motion);
         let shear = couette_shear_torque(p, e, omega);
         let e_cross_f = c * (eps[0] * force[1] - eps[1] * force[0]);
         let squeeze_power = -c * (force[0] * u[0] + force[1] * u[1]);
@@ -178,6 +150,54 @@ impl ClosedFormFilm {
             });
         }
         Ok(response)
+    }
+
+    /// The peak pressure and its angle (module docs, Outputs): the moving Gumbel film's
+    /// analytic peak at squeeze velocity `u`, the other models' maximum over 720 angles at
+    /// z = 0, 0 for Pinkus–Sternlicht.
+    fn peak_pressure(
+        &self,
+        eps: [f64; 2],
+        u: [f64; 2],
+        motion: &JournalMotion,
+    ) -> Result<(f64, f64), FilmModelError> {
+        let p = &self.params;
+        let (mut p_max, mut p_at) = (0.0f64, 0.0);
+        match self.model {
+            ClosedFormModel::PinkusSternlicht => {}
+            ClosedFormModel::ShortGumbelMovingFilm => {
+                (p_max, p_at) = moving_film_peak_pressure(p, eps, u);
+            }
+            _ => {
+                for i in 0..720 {
+                    let th = i as f64 * TAU / 720.0;
+                    let v = pressure(self.model, p, motion, th, 0.0)?;
+                    if v > p_max {
+                        p_max = v;
+                        p_at = th;
+                    }
+                }
+            }
+        }
+        Ok((p_max, p_at))
+    }
+
+    /// The side leakage per end (module docs, Outputs): (c L R/4) ∫ [ω' ε sin ψ − 2ε̇ cos ψ] dψ
+    /// over the film region of the short models (\[Flores2009\] eq. 3), 0 for the others.
+    fn end_flow(&self, motion: &JournalMotion) -> f64 {
+        let p = &self.params;
+        let (r, l, c) = (p.radius, p.length, p.radial_clearance);
+        let (a, b) = (
+            motion.wedge_speed() * motion.eccentricity_ratio,
+            -2.0 * motion.eccentricity_ratio_rate,
+        );
+        let region_integral = match self.model {
+            ClosedFormModel::ShortSommerfeld => 0.0,
+            ClosedFormModel::ShortGumbel => 2.0 * a, // ∫_0^π: 2a + 0·b
+            ClosedFormModel::ShortGumbelMovingFilm => 2.0 * a.hypot(b),
+            _ => 0.0,
+        };
+        0.25 * c * l * r * region_integral
     }
 }
 

@@ -146,6 +146,31 @@ impl ElasticBody {
                 reason: "must lie in [0, 0.5)",
             });
         }
+        let (frame, dof, n_free) = Self::supported_unknowns(&mesh);
+        let trip = Self::stiffness_triplets(&mesh, &material, &frame, &dof)?;
+        let mat = SparseColMat::<usize, f64>::try_new_from_triplets(n_free, n_free, &trip)
+            .map_err(|e| ElasticError::Factorization {
+                detail: format!("assembly: {e:?}"),
+            })?;
+        let llt = mat
+            .sp_cholesky(Side::Lower)
+            .map_err(|e| ElasticError::Factorization {
+                detail: format!("{e:?}"),
+            })?;
+        Ok(Self {
+            mesh,
+            material,
+            frame,
+            dof,
+            n_free,
+            llt,
+        })
+    }
+
+    /// The supports applied (module docs): per node the polar angle of a node with a radial or
+    /// tangential support (its unknowns are (u_r, u_θ)), the reduced unknown of each (node,
+    /// component) that is not held, and their number.
+    fn supported_unknowns(mesh: &Mesh) -> (Vec<Option<f64>>, Vec<Option<usize>>, usize) {
         let n_nodes = mesh.nodes.len();
         let mut frame = vec![None; n_nodes];
         let mut held = vec![[false; 2]; n_nodes];
@@ -173,6 +198,18 @@ impl ElasticBody {
                 }
             }
         }
+        (frame, dof, n_free)
+    }
+
+    /// The lower triangle of the reduced stiffness K as triplets: each element's 2 × 2 Gauss
+    /// stiffness (`element`), rotated into its nodes' polar frames, the held rows and columns
+    /// left out.
+    fn stiffness_triplets(
+        mesh: &Mesh,
+        material: &Material,
+        frame: &[Option<f64>],
+        dof: &[Option<usize>],
+    ) -> Result<Vec<Triplet<usize, usize, f64>>, ElasticError> {
         let d = material.plane_strain();
         let mut trip = Vec::with_capacity(mesh.elements.len() * 36);
         for (ie, el) in mesh.elements.iter().enumerate() {
@@ -208,23 +245,7 @@ impl ElasticBody {
                 }
             }
         }
-        let mat = SparseColMat::<usize, f64>::try_new_from_triplets(n_free, n_free, &trip)
-            .map_err(|e| ElasticError::Factorization {
-                detail: format!("assembly: {e:?}"),
-            })?;
-        let llt = mat
-            .sp_cholesky(Side::Lower)
-            .map_err(|e| ElasticError::Factorization {
-                detail: format!("{e:?}"),
-            })?;
-        Ok(Self {
-            mesh,
-            material,
-            frame,
-            dof,
-            n_free,
-            llt,
-        })
+        Ok(trip)
     }
 
     pub fn mesh(&self) -> &Mesh {

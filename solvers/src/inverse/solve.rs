@@ -208,23 +208,34 @@ where
         stats: Stats::default(),
         stalls: Vec::new(),
     };
-    let mut orbit = match start_from {
-        Some(s) => Orbit {
-            eps: s.eccentricity_ratio,
-            prev: s.previous[0],
-            prev2: s.previous[1],
-            state: s.state,
-        },
-        None => Orbit {
-            eps: [0.0; 2],
-            prev: [0.0; 2],
-            prev2: [0.0; 2],
-            state: film.initial_state([0.0; 2]),
-        },
-    };
+    let mut orbit = Orbit::starting(start_from, &*film);
     orbit.run_in(&mut stepper, film, load, &grid, observer)?;
     let outcome = orbit.cycles_until_periodic(&mut stepper, film, load, &grid, observer)?;
 
+    let info = inverse_info(params, &grid, &stepper, &outcome, start);
+    let end = InverseStart {
+        eccentricity_ratio: orbit.eps,
+        previous: [orbit.prev, orbit.prev2],
+        state: orbit.state,
+    };
+    let solution = InverseSolution {
+        summary: summarize(&outcome.records),
+        steps: outcome.records,
+        fields: outcome.snapshots,
+        info,
+    };
+    Ok((solution, end))
+}
+
+/// The record of one solve: its time grid, the periodicity test's outcome (a warning when it
+/// failed), the reference load, the step statistics and the wall time since `start`.
+fn inverse_info(
+    params: &InverseParams,
+    grid: &CycleGrid,
+    stepper: &Stepper<'_>,
+    outcome: &CyclesOutcome,
+    start: Instant,
+) -> InverseInfo {
     let warning = (!outcome.periodic).then_some(InverseWarning::NotPeriodic {
         cycles: outcome.cycles,
         eccentricity_change: outcome.eccentricity_change,
@@ -233,7 +244,7 @@ where
         film_state_tolerance: params.film_state_tolerance,
     });
     let stats = &stepper.stats;
-    let info = InverseInfo {
+    InverseInfo {
         steps_per_cycle: grid.steps,
         time_step: grid.dt,
         period: grid.period,
@@ -254,19 +265,7 @@ where
         max_stalled_residual: stats.max_stalled,
         split_steps: stats.split,
         wall_time: start.elapsed().as_secs_f64(),
-    };
-    let end = InverseStart {
-        eccentricity_ratio: orbit.eps,
-        previous: [orbit.prev, orbit.prev2],
-        state: orbit.state,
-    };
-    let solution = InverseSolution {
-        summary: summarize(&outcome.records),
-        steps: outcome.records,
-        fields: outcome.snapshots,
-        info,
-    };
-    Ok((solution, end))
+    }
 }
 
 /// The time grid of one solve: N steps of Δt per load cycle and the run-in length.
@@ -625,6 +624,30 @@ struct Marched {
     accepted: Accepted<()>,
     /// The step's fields, when asked for.
     fields: Option<FilmFields>,
+}
+
+impl<S> Orbit<S> {
+    /// The orbit at the start of a solve: where an earlier one ended, else the centre with
+    /// the film's initial state there.
+    fn starting<F: FilmModel<State = S> + ?Sized>(
+        start_from: Option<InverseStart<S>>,
+        film: &F,
+    ) -> Self {
+        match start_from {
+            Some(s) => Orbit {
+                eps: s.eccentricity_ratio,
+                prev: s.previous[0],
+                prev2: s.previous[1],
+                state: s.state,
+            },
+            None => Orbit {
+                eps: [0.0; 2],
+                prev: [0.0; 2],
+                prev2: [0.0; 2],
+                state: film.initial_state([0.0; 2]),
+            },
+        }
+    }
 }
 
 impl<S: Clone> Orbit<S> {

@@ -30,7 +30,7 @@
 use super::performance::{performance_at, squeeze_rate};
 use super::{MobilityError, MobilityModel, MobilityParams, PerformancePoint, PeriodicLoad};
 use differential_equations::prelude::{
-    CrossingDirection, Event, EventConfig, ExplicitRungeKutta, IVP, ODE, Status,
+    CrossingDirection, Event, EventConfig, ExplicitRungeKutta, IVP, ODE, Solution, Status,
 };
 
 /// Settings of an orbit computation.
@@ -334,31 +334,7 @@ fn integrate_cycle<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
             }
         })?;
     if matches!(sol.status, Status::Interrupted) || sol.t.len() != n + 1 {
-        // The collapse event ended the cycle (or outputs are missing): find where |ε| is
-        // largest among what was produced.
-        let (t_end, y_end) = sol
-            .t
-            .iter()
-            .zip(&sol.y)
-            .max_by(|a, b| a.1[0].hypot(a.1[1]).total_cmp(&b.1[0].hypot(b.1[1])))
-            .map(|(t, y)| (*t, *y))
-            .unwrap_or((t0, y0));
-        let e = y_end[0].hypot(y_end[1]);
-        if matches!(sol.status, Status::Interrupted) || e >= limit {
-            return Err(MobilityError::FilmCollapse {
-                time: t_end - t0,
-                crank_angle_deg: load.crank_angle_deg(t_end - t0),
-                cycle,
-                eccentricity: e,
-                limit,
-            });
-        }
-        return Err(MobilityError::Integration {
-            time: t_end - t0,
-            crank_angle_deg: load.crank_angle_deg(t_end - t0),
-            cycle,
-            reason: format!("{} of {} output samples produced", sol.t.len(), n + 1),
-        });
+        return Err(incomplete_cycle(&sol, t0, y0, n, load, limit, cycle));
     }
     for (t, y) in sol.t.iter().zip(&sol.y) {
         if !(y[0].is_finite() && y[1].is_finite()) {
@@ -378,6 +354,44 @@ fn integrate_cycle<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
     })
 }
 
+/// The error of a cycle that the collapse event interrupted or that is missing output
+/// samples (of `n` + 1), at the produced sample where |ε| is largest (the start `y0` at `t0`
+/// when none was): a film collapse when the event fired or |ε| reached `limit`, else an
+/// integration error counting the samples.
+fn incomplete_cycle<L: PeriodicLoad + ?Sized>(
+    sol: &Solution<f64, [f64; 2]>,
+    t0: f64,
+    y0: [f64; 2],
+    n: usize,
+    load: &L,
+    limit: f64,
+    cycle: usize,
+) -> MobilityError {
+    let (t_end, y_end) = sol
+        .t
+        .iter()
+        .zip(&sol.y)
+        .max_by(|a, b| a.1[0].hypot(a.1[1]).total_cmp(&b.1[0].hypot(b.1[1])))
+        .map(|(t, y)| (*t, *y))
+        .unwrap_or((t0, y0));
+    let e = y_end[0].hypot(y_end[1]);
+    if matches!(sol.status, Status::Interrupted) || e >= limit {
+        return MobilityError::FilmCollapse {
+            time: t_end - t0,
+            crank_angle_deg: load.crank_angle_deg(t_end - t0),
+            cycle,
+            eccentricity: e,
+            limit,
+        };
+    }
+    MobilityError::Integration {
+        time: t_end - t0,
+        crank_angle_deg: load.crank_angle_deg(t_end - t0),
+        cycle,
+        reason: format!("{} of {} output samples produced", sol.t.len(), n + 1),
+    }
+}
+
 fn describe_error(
     err: &differential_equations::prelude::Error<f64, [f64; 2]>,
     t0: f64,
@@ -392,6 +406,8 @@ fn describe_error(
     }
 }
 
+/// The reported (last) cycle: its loads and crank angles, the performance, attitude angles and
+/// summary at its samples, with the cycle history and the integrator's counts.
 #[allow(clippy::too_many_arguments)]
 fn assemble<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
     params: &OrbitParams,
@@ -403,9 +419,39 @@ fn assemble<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
     change: f64,
     (evals, accepted, rejected): (usize, usize, usize),
 ) -> Result<OrbitInfo, MobilityError> {
-    let n = time.len();
     let loads: Vec<[f64; 2]> = time.iter().map(|&t| load.load(t)).collect();
     let crank: Vec<f64> = time.iter().map(|&t| load.crank_angle_deg(t)).collect();
+    let performance = performance_along(params, model, &time, &eccentricity, &loads, &crank)?;
+    let attitude = attitude_angles(&loads, &eccentricity);
+    let summary = cycle_summary(&time, &crank, &performance);
+    Ok(OrbitInfo {
+        time,
+        crank_angle_deg: crank,
+        eccentricity,
+        load: loads,
+        attitude_angle: attitude,
+        performance,
+        summary,
+        cycles: history.len(),
+        cycle_history: history,
+        periodicity_change: change,
+        rhs_evaluations: evals,
+        accepted_steps: accepted,
+        rejected_steps: rejected,
+    })
+}
+
+/// The closed-form performance (p_max, flows, power, h_min) at each sample of the cycle; a
+/// non-finite one is an error naming its time and crank angle.
+fn performance_along<M: MobilityModel + ?Sized>(
+    params: &OrbitParams,
+    model: &M,
+    time: &[f64],
+    eccentricity: &[[f64; 2]],
+    loads: &[[f64; 2]],
+    crank: &[f64],
+) -> Result<Vec<PerformancePoint>, MobilityError> {
+    let n = time.len();
     let mut performance = Vec::with_capacity(n);
     for i in 0..n {
         let p = performance_at(&params.bearing, model, eccentricity[i], loads[i]);
@@ -426,22 +472,32 @@ fn assemble<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
         }
         performance.push(p);
     }
-    // Attitude angle against the load direction; zero loads borrow the last non-zero direction
-    // (or the first one of the cycle).
+    Ok(performance)
+}
+
+/// The attitude angle of ε against the load direction, wrapped to (−π, π]; zero loads borrow
+/// the last non-zero direction (or the first one of the cycle).
+fn attitude_angles(loads: &[[f64; 2]], eccentricity: &[[f64; 2]]) -> Vec<f64> {
     let mut dir = loads
         .iter()
         .find(|w| w[0] != 0.0 || w[1] != 0.0)
         .map(|w| w[1].atan2(w[0]))
         .unwrap_or(0.0);
-    let mut attitude = Vec::with_capacity(n);
-    for (w, e) in loads.iter().zip(&eccentricity) {
+    let mut attitude = Vec::with_capacity(loads.len());
+    for (w, e) in loads.iter().zip(eccentricity) {
         if w[0] != 0.0 || w[1] != 0.0 {
             dir = w[1].atan2(w[0]);
         }
         let a = e[1].atan2(e[0]) - dir;
         attitude.push(wrap_pi(a));
     }
-    // Extremes and trapezoidal time averages.
+    attitude
+}
+
+/// The cycle's extremes (thinnest film, highest peak pressure, with their crank angles) and
+/// trapezoidal time averages.
+fn cycle_summary(time: &[f64], crank: &[f64], performance: &[PerformancePoint]) -> OrbitSummary {
+    let n = time.len();
     let mut imin = 0;
     let mut ipmax = 0;
     for i in 0..n {
@@ -460,7 +516,7 @@ fn assemble<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
         }
         acc / span
     };
-    let summary = OrbitSummary {
+    OrbitSummary {
         min_film_thickness: performance[imin].min_film_thickness,
         min_film_crank_angle_deg: crank[imin],
         max_eccentricity_ratio: performance[imin].eccentricity_ratio,
@@ -469,22 +525,7 @@ fn assemble<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
         max_peak_pressure_crank_angle_deg: crank[ipmax],
         mean_side_flow: mean(&|p| p.side_flow),
         mean_power_loss: mean(&|p| p.power_loss),
-    };
-    Ok(OrbitInfo {
-        time,
-        crank_angle_deg: crank,
-        eccentricity,
-        load: loads,
-        attitude_angle: attitude,
-        performance,
-        summary,
-        cycles: history.len(),
-        cycle_history: history,
-        periodicity_change: change,
-        rhs_evaluations: evals,
-        accepted_steps: accepted,
-        rejected_steps: rejected,
-    })
+    }
 }
 
 fn wrap_pi(a: f64) -> f64 {

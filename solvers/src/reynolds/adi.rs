@@ -389,52 +389,85 @@ pub(crate) fn solve_krylov(
                 tolerance,
             });
         }
-        // One GMRES cycle.
-        let beta = dot(&r, &r).sqrt();
-        for (vk, rk) in ws.v[0].iter_mut().zip(&r) {
-            *vk = rk / beta;
-        }
-        ws.r = r;
-        ws.gvec.iter_mut().for_each(|g| *g = 0.0);
-        ws.gvec[0] = beta;
-        let mut used = 0;
-        for jj in 0..RESTART {
-            let mut zj = std::mem::take(&mut ws.z[jj]);
-            let vj = std::mem::take(&mut ws.v[jj]);
-            if stale && iterations == STALE_REBUILD_ITERATIONS {
-                // Flexible GMRES keeps every preconditioned direction z_j, so the
-                // preconditioner may change between iterations: rebuild for this matrix.
-                ws.multigrid.rebuild(grid, st, switch)?;
-                stale = false;
-            }
-            match preconditioner {
-                Preconditioner::Adi => precondition(grid, st, &vj, &mut zj, ws)?,
-                Preconditioner::Multigrid => ws.multigrid.apply(&vj, &mut zj)?,
-            }
-            ws.v[jj] = vj;
-            let mut w = std::mem::take(&mut ws.v[jj + 1]);
-            st.apply(grid, &zj, &mut w);
-            ws.z[jj] = zj;
-            let hnorm = arnoldi_column(ws, jj, w);
-            rotate_column(ws, jj);
-            used = jj + 1;
-            iterations += 1;
-            if !ws.gvec[jj + 1].is_finite() {
-                return Err(ReynoldsError::LinearSolve {
-                    solver: "ADI-Krylov",
-                    detail: format!("Krylov residual not finite at iteration {iterations}"),
-                });
-            }
-            // ‖r‖∞ ≤ ‖r‖₂: stop the cycle once the 2-norm estimate is below the target.
-            if ws.gvec[jj + 1].abs() <= 0.5 * target || hnorm == 0.0 {
-                break;
-            }
-            if iterations >= max_iterations {
-                break;
-            }
-        }
+        let used = gmres_cycle(
+            grid,
+            st,
+            r,
+            target,
+            max_iterations,
+            preconditioner,
+            switch,
+            &mut stale,
+            &mut iterations,
+            ws,
+        )?;
         add_correction(ws, used, x);
     }
+}
+
+/// One cycle of flexible GMRES for [`solve_krylov`] from its residual `r`: up to `RESTART`
+/// Arnoldi steps on the right-preconditioned operator (rebuilding a stale multigrid hierarchy
+/// at `STALE_REBUILD_ITERATIONS`), ended early once the 2-norm estimate of the residual is below
+/// half the `target` or `max_iterations` are spent. Counts the iterations and returns how
+/// many directions the correction uses.
+// Crate-internal, called once by `solve_krylov` with its own state.
+#[allow(clippy::too_many_arguments)]
+fn gmres_cycle(
+    grid: &Grid,
+    st: &Stencil,
+    r: Vec<f64>,
+    target: f64,
+    max_iterations: usize,
+    preconditioner: Preconditioner,
+    switch: Option<&[f64]>,
+    stale: &mut bool,
+    iterations: &mut usize,
+    ws: &mut AdiWorkspace,
+) -> Result<usize, ReynoldsError> {
+    let beta = dot(&r, &r).sqrt();
+    for (vk, rk) in ws.v[0].iter_mut().zip(&r) {
+        *vk = rk / beta;
+    }
+    ws.r = r;
+    ws.gvec.iter_mut().for_each(|g| *g = 0.0);
+    ws.gvec[0] = beta;
+    let mut used = 0;
+    for jj in 0..RESTART {
+        let mut zj = std::mem::take(&mut ws.z[jj]);
+        let vj = std::mem::take(&mut ws.v[jj]);
+        if *stale && *iterations == STALE_REBUILD_ITERATIONS {
+            // Flexible GMRES keeps every preconditioned direction z_j, so the
+            // preconditioner may change between iterations: rebuild for this matrix.
+            ws.multigrid.rebuild(grid, st, switch)?;
+            *stale = false;
+        }
+        match preconditioner {
+            Preconditioner::Adi => precondition(grid, st, &vj, &mut zj, ws)?,
+            Preconditioner::Multigrid => ws.multigrid.apply(&vj, &mut zj)?,
+        }
+        ws.v[jj] = vj;
+        let mut w = std::mem::take(&mut ws.v[jj + 1]);
+        st.apply(grid, &zj, &mut w);
+        ws.z[jj] = zj;
+        let hnorm = arnoldi_column(ws, jj, w);
+        rotate_column(ws, jj);
+        used = jj + 1;
+        *iterations += 1;
+        if !ws.gvec[jj + 1].is_finite() {
+            return Err(ReynoldsError::LinearSolve {
+                solver: "ADI-Krylov",
+                detail: format!("Krylov residual not finite at iteration {iterations}"),
+            });
+        }
+        // ‖r‖∞ ≤ ‖r‖₂: stop the cycle once the 2-norm estimate is below the target.
+        if ws.gvec[jj + 1].abs() <= 0.5 * target || hnorm == 0.0 {
+            break;
+        }
+        if *iterations >= max_iterations {
+            break;
+        }
+    }
+    Ok(used)
 }
 
 /// Column j of the Arnoldi process: w = A z_j orthogonalised against v_0 … v_j by modified

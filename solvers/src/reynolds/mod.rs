@@ -1073,100 +1073,31 @@ impl ReynoldsSolver {
             self.sensitivity_for = None;
         }
         let prep = self.prepare(lin.eccentricity_ratio, &lin.conditions, None)?;
-        let p = &self.params;
-        let grid = &self.grid;
-        let n = grid.len();
-        let nz = grid.n_z;
-        let level = Level {
-            grid,
-            h: &prep.h.node,
-            h_face: &prep.h.face_theta,
-            k_theta: &self.k_theta,
-            k_z: &self.k_z,
-            speed: prep.speed,
-        };
+        let n = self.grid.len();
         let zeros = vec![0.0; n];
-        let time = match lin.dt {
-            None => TimeTerm::Steady,
-            Some(dt) => TimeTerm::Step {
-                dt,
-                old_content: &zeros,
-                old_outflow: (lin.flux_weight < 1.0).then_some(&zeros[..]),
-            },
-        };
         let pressure: Vec<f64> = lin.psi.iter().zip(&lin.g).map(|(x, g)| x * g).collect();
         let mut out = Vec::with_capacity(changes.len());
         let mut dh_node = vec![0.0; n];
         let mut dh_face = vec![0.0; n];
         let mut d_res = vec![0.0; n];
         for change in changes {
-            for i in 0..grid.n_theta {
-                let th = grid.theta(i);
-                let thf = th + 0.5 * grid.d_theta;
-                let (dn, df) = match change {
-                    ThicknessChange::Eccentricity(0) => {
-                        (-p.clearance * th.cos(), -p.clearance * thf.cos())
-                    }
-                    ThicknessChange::Eccentricity(_) => {
-                        // 1 (checked above)
-                        (-p.clearance * th.sin(), -p.clearance * thf.sin())
-                    }
-                    ThicknessChange::Gap(d) => (d.at(th), d.at(thf)),
-                };
-                for j in 0..nz {
-                    dh_node[i * nz + j] = dn;
-                    dh_face[i * nz + j] = df;
-                }
-            }
-            discretization::residual_eccentricity_derivative(
-                &level,
-                &dh_node,
-                &dh_face,
-                &lin.psi,
+            thickness_change(
+                &self.grid,
+                self.params.clearance,
+                change,
+                &mut dh_node,
+                &mut dh_face,
+            );
+            self.assemble_response(
+                &lin,
+                &prep,
+                [&dh_node, &dh_face],
                 &pressure,
-                lin.flux_weight,
-                lin.dt,
+                &zeros,
                 &mut d_res,
             );
-            discretization::assemble(&level, &lin.g, &zeros, time, &mut self.stencil);
-            for k in 0..n {
-                self.stencil.rhs[k] = -d_res[k];
-            }
-            let mut x = match change {
-                ThicknessChange::Eccentricity(c) => std::mem::take(&mut self.sensitivity[*c]),
-                ThicknessChange::Gap(_) => Vec::new(),
-            };
-            x.resize(n, 0.0);
-            match p.linear_solver.preconditioner() {
-                Some(pc) => {
-                    adi::solve_krylov(
-                        grid,
-                        &self.stencil,
-                        &mut x,
-                        JACOBIAN_TOLERANCE.max(p.tolerance),
-                        None,
-                        p.max_linear_iterations,
-                        pc,
-                        Some(&lin.g),
-                        &mut self.ws,
-                    )?;
-                }
-                None => oracle::solve_lu(grid, &self.stencil, &mut x)?,
-            }
-            let mut force = [0.0; 2];
-            let mut dp = Array2::zeros((grid.n_theta, nz));
-            for i in 0..grid.n_theta {
-                let th = grid.theta(i);
-                for j in 0..nz {
-                    let k = i * nz + j;
-                    if grid.kind[k] == NodeKind::Unknown {
-                        let d = p.bulk_modulus * lin.g[k] * x[k];
-                        force[0] -= grid.area_weight[k] * d * th.cos();
-                        force[1] -= grid.area_weight[k] * d * th.sin();
-                        dp[[i, j]] = d;
-                    }
-                }
-            }
+            let x = self.solve_response(change, &lin)?;
+            let (force, dp) = self.reduce_response(&lin.g, &x);
             if let ThicknessChange::Eccentricity(c) = change {
                 self.sensitivity[*c] = x;
             }
@@ -1191,6 +1122,107 @@ impl ReynoldsSolver {
             self.sensitivity_for = lin.dt.map(|dt| (self.grid.theta0, dt));
         }
         Ok(out)
+    }
+
+    /// Stage of [`Self::thickness_responses`]: the right-hand side −∂R/∂h · δh of its first
+    /// equation into `d_res` and the stencil's, and the matrix A(g) on the converged switch
+    /// with the old level fixed (zero) into the stencil; `dh` is δh at the nodes and at their
+    /// east θ-faces, `pressure` the converged ψ g.
+    fn assemble_response(
+        &mut self,
+        lin: &Linearization,
+        prep: &Prepared,
+        dh: [&[f64]; 2],
+        pressure: &[f64],
+        zeros: &[f64],
+        d_res: &mut [f64],
+    ) {
+        let [dh_node, dh_face] = dh;
+        let level = Level {
+            grid: &self.grid,
+            h: &prep.h.node,
+            h_face: &prep.h.face_theta,
+            k_theta: &self.k_theta,
+            k_z: &self.k_z,
+            speed: prep.speed,
+        };
+        let time = match lin.dt {
+            None => TimeTerm::Steady,
+            Some(dt) => TimeTerm::Step {
+                dt,
+                old_content: zeros,
+                old_outflow: (lin.flux_weight < 1.0).then_some(zeros),
+            },
+        };
+        discretization::residual_eccentricity_derivative(
+            &level,
+            dh_node,
+            dh_face,
+            &lin.psi,
+            pressure,
+            lin.flux_weight,
+            lin.dt,
+            d_res,
+        );
+        discretization::assemble(&level, &lin.g, zeros, time, &mut self.stencil);
+        for k in 0..self.grid.len() {
+            self.stencil.rhs[k] = -d_res[k];
+        }
+    }
+
+    /// Stage of [`Self::thickness_responses`]: solves A(g) δψ = −∂R/∂h · δh (assembled by
+    /// [`Self::assemble_response`]) to 1e-5 of its largest right-hand side, an eccentricity
+    /// direction from its previous answer (taken out of the sensitivities), a gap from zero.
+    fn solve_response(
+        &mut self,
+        change: &ThicknessChange,
+        lin: &Linearization,
+    ) -> Result<Vec<f64>, ReynoldsError> {
+        let p = &self.params;
+        let mut x = match change {
+            ThicknessChange::Eccentricity(c) => std::mem::take(&mut self.sensitivity[*c]),
+            ThicknessChange::Gap(_) => Vec::new(),
+        };
+        x.resize(self.grid.len(), 0.0);
+        match p.linear_solver.preconditioner() {
+            Some(pc) => {
+                adi::solve_krylov(
+                    &self.grid,
+                    &self.stencil,
+                    &mut x,
+                    JACOBIAN_TOLERANCE.max(p.tolerance),
+                    None,
+                    p.max_linear_iterations,
+                    pc,
+                    Some(&lin.g),
+                    &mut self.ws,
+                )?;
+            }
+            None => oracle::solve_lu(&self.grid, &self.stencil, &mut x)?,
+        }
+        Ok(x)
+    }
+
+    /// Stage of [`Self::thickness_responses`]: δp_k = β g_k δψ_k at the unknown nodes and
+    /// δF = −Σ_k w_k δp_k (cos θ_k, sin θ_k), its last two equations.
+    fn reduce_response(&self, g: &[f64], x: &[f64]) -> ([f64; 2], Array2<f64>) {
+        let grid = &self.grid;
+        let nz = grid.n_z;
+        let mut force = [0.0; 2];
+        let mut dp = Array2::zeros((grid.n_theta, nz));
+        for i in 0..grid.n_theta {
+            let th = grid.theta(i);
+            for j in 0..nz {
+                let k = i * nz + j;
+                if grid.kind[k] == NodeKind::Unknown {
+                    let d = self.params.bulk_modulus * g[k] * x[k];
+                    force[0] -= grid.area_weight[k] * d * th.cos();
+                    force[1] -= grid.area_weight[k] * d * th.sin();
+                    dp[[i, j]] = d;
+                }
+            }
+        }
+        (force, dp)
     }
 
     /// The steady film (no squeeze) at ε, from a cold start.
@@ -1623,37 +1655,9 @@ impl ReynoldsSolver {
         mut g: Vec<f64>,
         time: TimeTerm,
     ) -> Result<(Vec<f64>, Vec<f64>, NewtonCounts, f64), ReynoldsError> {
-        let Self {
-            params: p,
-            grid,
-            stencil,
-            ws,
-            k_theta,
-            k_z,
-            dirichlet,
-            ..
-        } = self;
-        let p = &*p;
-        let grid = &*grid;
-        let mut frozen = FrozenSwitch {
-            level: Level {
-                grid,
-                h: &h.node,
-                h_face: &h.face_theta,
-                k_theta,
-                k_z,
-                speed,
-            },
-            params: p,
-            dirichlet,
-            time,
-            stencil,
-            ws,
-            r: vec![0.0; grid.len()],
-            first_residual: f64::NAN,
-            assembled_for: Vec::new(),
-            solved_residual: None,
-        };
+        let mut frozen = self.frozen_switch(h, speed, time);
+        let p = frozen.params;
+        let grid = frozen.level.grid;
         let n_unknown = grid
             .kind
             .iter()
@@ -1701,20 +1705,49 @@ impl ReynoldsSolver {
                 tight = true;
                 continue;
             }
-            tight = always_tight;
-            match rule.choose(infeasible, &g, &g_new) {
-                // Block pivot: every infeasible node changes state (the full semismooth
-                // Newton step).
-                Pivot::Block => g.copy_from_slice(&g_new),
-                // Murty's least-index single pivot, with a tight solve.
-                Pivot::Single(k) => {
-                    g[k] = g_new[k];
-                    newton.single_pivots += 1;
-                    tight = true;
-                }
-            }
+            tight = rule.pivot(infeasible, &mut g, &g_new, &mut newton) || always_tight;
         };
         Ok((psi, g, newton, residual))
+    }
+
+    /// The frozen-switch system of [`Self::complementarity_newton`] on the level of film
+    /// thickness `h`, surface speed `speed` and time term `time`, borrowing the solver's
+    /// stencil and workspace.
+    fn frozen_switch<'a>(
+        &'a mut self,
+        h: &'a FilmThickness,
+        speed: f64,
+        time: TimeTerm<'a>,
+    ) -> FrozenSwitch<'a> {
+        let Self {
+            params,
+            grid,
+            stencil,
+            ws,
+            k_theta,
+            k_z,
+            dirichlet,
+            ..
+        } = self;
+        FrozenSwitch {
+            level: Level {
+                grid,
+                h: &h.node,
+                h_face: &h.face_theta,
+                k_theta,
+                k_z,
+                speed,
+            },
+            params,
+            dirichlet,
+            time,
+            stencil,
+            ws,
+            r: vec![0.0; grid.len()],
+            first_residual: f64::NAN,
+            assembled_for: Vec::new(),
+            solved_residual: None,
+        }
     }
 }
 
@@ -1828,6 +1861,34 @@ impl FrozenSwitch<'_> {
     }
 }
 
+/// The thickness change δh of a [`ThicknessChange`] at the nodes (`dh_node`) and at their east
+/// θ-faces (`dh_face`), the same at every z: −c cos θ, −c sin θ for ε_x, ε_y; δg(θ) for a gap.
+fn thickness_change(
+    grid: &Grid,
+    clearance: f64,
+    change: &ThicknessChange,
+    dh_node: &mut [f64],
+    dh_face: &mut [f64],
+) {
+    let nz = grid.n_z;
+    for i in 0..grid.n_theta {
+        let th = grid.theta(i);
+        let thf = th + 0.5 * grid.d_theta;
+        let (dn, df) = match change {
+            ThicknessChange::Eccentricity(0) => (-clearance * th.cos(), -clearance * thf.cos()),
+            ThicknessChange::Eccentricity(_) => {
+                // 1 (checked by the caller)
+                (-clearance * th.sin(), -clearance * thf.sin())
+            }
+            ThicknessChange::Gap(d) => (d.at(th), d.at(thf)),
+        };
+        for j in 0..nz {
+            dh_node[i * nz + j] = dn;
+            dh_face[i * nz + j] = df;
+        }
+    }
+}
+
 /// The pivoting rule of \[JudicePires1994\]: the fewest infeasible nodes so far, and how many
 /// more block steps may fail to lower it before a single (Murty) pivot is taken.
 struct PivotRule {
@@ -1844,6 +1905,30 @@ enum Pivot {
 }
 
 impl PivotRule {
+    /// The active-set update of a Newton step whose answer's switch `g_new` differs from `g`
+    /// at `infeasible` nodes: a block pivot (every infeasible node changes state, the full
+    /// semismooth Newton step) or Murty's least-index single pivot (module docs). Returns true
+    /// after a single pivot, whose next solve must be tight.
+    fn pivot(
+        &mut self,
+        infeasible: usize,
+        g: &mut [f64],
+        g_new: &[f64],
+        newton: &mut NewtonCounts,
+    ) -> bool {
+        match self.choose(infeasible, g, g_new) {
+            Pivot::Block => {
+                g.copy_from_slice(g_new);
+                false
+            }
+            Pivot::Single(k) => {
+                g[k] = g_new[k];
+                newton.single_pivots += 1;
+                true
+            }
+        }
+    }
+
     fn choose(&mut self, infeasible: usize, g: &[f64], g_new: &[f64]) -> Pivot {
         if infeasible < self.fewest_infeasible {
             self.fewest_infeasible = infeasible;

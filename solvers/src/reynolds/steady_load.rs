@@ -78,61 +78,22 @@ pub(crate) fn solve_from(
             };
             return Ok((sol, info));
         }
-        // Forward-difference Jacobian.
-        let d = 1e-6;
-        let mut jac = [[0.0; 2]; 2];
-        for b in 0..2 {
-            let mut e = eps;
-            e[b] += if eps[0].hypot(eps[1]) > 0.99 { -d } else { d };
-            let step = e[b] - eps[b];
-            let (_, rb) = eval(solver, e)?;
-            jac[0][b] = (rb[0] - r[0]) / step;
-            jac[1][b] = (rb[1] - r[1]) / step;
-        }
-        let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
-        if !(det.is_finite() && det != 0.0) {
-            return Err(ReynoldsError::SteadyLoadNotConverged {
-                iterations: it,
-                force_residual: rn,
-                eccentricity_ratio: eps,
-            });
-        }
-        let mut de = [
-            -(jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
-            -(-jac[1][0] * r[0] + jac[0][0] * r[1]) / det,
-        ];
-        let len = de[0].hypot(de[1]);
-        if len > 0.25 {
-            de = [de[0] * 0.25 / len, de[1] * 0.25 / len];
-        }
-        let mut lambda = 1.0;
-        let mut accepted = false;
-        for _ in 0..9 {
-            let mut trial = [eps[0] + lambda * de[0], eps[1] + lambda * de[1]];
-            let m = trial[0].hypot(trial[1]);
-            if rigid && m > 0.995 {
-                trial = [trial[0] * 0.995 / m, trial[1] * 0.995 / m];
+        let not_converged = ReynoldsError::SteadyLoadNotConverged {
+            iterations: it,
+            force_residual: rn,
+            eccentricity_ratio: eps,
+        };
+        let jac = jacobian(solver, &mut eval, eps, r)?;
+        let Some(de) = newton_step(jac, r) else {
+            return Err(not_converged);
+        };
+        match line_search(solver, &mut eval, eps, de, rn, rigid)? {
+            Some((trial, s, rt)) => {
+                eps = trial;
+                sol = s;
+                r = rt;
             }
-            match eval(solver, trial) {
-                Ok((s, rt)) if rt[0].hypot(rt[1]) < rn => {
-                    eps = trial;
-                    sol = s;
-                    r = rt;
-                    accepted = true;
-                    break;
-                }
-                Ok(_) => {}
-                Err(e) if lambda < 0.01 => return Err(e),
-                Err(_) => {}
-            }
-            lambda *= 0.5;
-        }
-        if !accepted {
-            return Err(ReynoldsError::SteadyLoadNotConverged {
-                iterations: it,
-                force_residual: rn,
-                eccentricity_ratio: eps,
-            });
+            None => return Err(not_converged),
         }
     }
     Err(ReynoldsError::SteadyLoadNotConverged {
@@ -140,4 +101,77 @@ pub(crate) fn solve_from(
         force_residual: r[0].hypot(r[1]),
         eccentricity_ratio: eps,
     })
+}
+
+/// The residual r(ε) = F_film(ε) + W of one steady film solve, with the film.
+type Residual = Result<(FilmSolution, [f64; 2]), ReynoldsError>;
+
+/// J_ab = ∂r_a/∂ε_b at `eps` by forward differences (δ = 1e-6, backwards beyond |ε| = 0.99),
+/// the module docs' second line.
+fn jacobian(
+    solver: &mut ReynoldsSolver,
+    eval: &mut impl FnMut(&mut ReynoldsSolver, [f64; 2]) -> Residual,
+    eps: [f64; 2],
+    r: [f64; 2],
+) -> Result<[[f64; 2]; 2], ReynoldsError> {
+    let d = 1e-6;
+    let mut jac = [[0.0; 2]; 2];
+    for b in 0..2 {
+        let mut e = eps;
+        e[b] += if eps[0].hypot(eps[1]) > 0.99 { -d } else { d };
+        let step = e[b] - eps[b];
+        let (_, rb) = eval(solver, e)?;
+        jac[0][b] = (rb[0] - r[0]) / step;
+        jac[1][b] = (rb[1] - r[1]) / step;
+    }
+    Ok(jac)
+}
+
+/// The Newton step J Δε = −r, limited to |Δε| ≤ 0.25; None when J is singular.
+fn newton_step(jac: [[f64; 2]; 2], r: [f64; 2]) -> Option<[f64; 2]> {
+    let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+    if !(det.is_finite() && det != 0.0) {
+        return None;
+    }
+    let mut de = [
+        -(jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
+        -(-jac[1][0] * r[0] + jac[0][0] * r[1]) / det,
+    ];
+    let len = de[0].hypot(de[1]);
+    if len > 0.25 {
+        de = [de[0] * 0.25 / len, de[1] * 0.25 / len];
+    }
+    Some(de)
+}
+
+/// An accepted trial: ε, its film and its residual r(ε).
+type Accepted = ([f64; 2], FilmSolution, [f64; 2]);
+
+/// The step ε + λ Δε with λ halved (up to 8 times) until |r| falls below `rn`, kept inside
+/// |ε| ≤ 0.995 when `rigid`: the accepted position, its film and residual, or None. A film
+/// solve that fails is a rejected trial, unless λ is below 0.01 (its error is returned).
+fn line_search(
+    solver: &mut ReynoldsSolver,
+    eval: &mut impl FnMut(&mut ReynoldsSolver, [f64; 2]) -> Residual,
+    eps: [f64; 2],
+    de: [f64; 2],
+    rn: f64,
+    rigid: bool,
+) -> Result<Option<Accepted>, ReynoldsError> {
+    let mut lambda = 1.0;
+    for _ in 0..9 {
+        let mut trial = [eps[0] + lambda * de[0], eps[1] + lambda * de[1]];
+        let m = trial[0].hypot(trial[1]);
+        if rigid && m > 0.995 {
+            trial = [trial[0] * 0.995 / m, trial[1] * 0.995 / m];
+        }
+        match eval(solver, trial) {
+            Ok((s, rt)) if rt[0].hypot(rt[1]) < rn => return Ok(Some((trial, s, rt))),
+            Ok(_) => {}
+            Err(e) if lambda < 0.01 => return Err(e),
+            Err(_) => {}
+        }
+        lambda *= 0.5;
+    }
+    Ok(None)
 }
