@@ -658,6 +658,8 @@ pub(crate) fn crank_angle_chart<'a, 'b>(
     Ok(chart)
 }
 
+/// One panel of the cycle figure: its title and legend strip above, then the feed window, TDC
+/// and the curves; "not computed" when no method has the panel's series.
 fn draw_panel(
     area: &DrawingArea<BitMapBackend<'_>, Shift>,
     title: &str,
@@ -677,6 +679,20 @@ fn draw_panel(
         (FAMILY, 22).into_font(),
     ))
     .map_err(e)?;
+    draw_panel_legend(head, curves, ctx)?;
+    let (x0, x1, y0, y1) = panel_ranges(curves, ctx);
+    let mut chart = crank_angle_chart(&area, (x0, x1), (y0, y1), ylabel)?;
+    draw_feed_and_tdc(&mut chart, ctx, (x0, x1), (y0, y1))?;
+    draw_panel_curves(&mut chart, curves, ctx, x1)
+}
+
+/// The legend strip under a panel's title: one entry per curve, and the feed window's patch
+/// when the feed opens and closes.
+fn draw_panel_legend(
+    head: DrawingArea<BitMapBackend<'_>, Shift>,
+    curves: &[Curve],
+    ctx: &FigureContext,
+) -> Result<(), String> {
     let mut legend: Vec<LegendEntry> = curves
         .iter()
         .map(|c| {
@@ -688,7 +704,12 @@ fn draw_panel(
         legend.push(("feed open".into(), FEED_SHADE, Mark::Patch));
     }
     let dims = head.dim_in_pixel();
-    legend_strip(&head.shrink((0, 30), (dims.0, dims.1 - 30)), &legend, 96)?;
+    legend_strip(&head.shrink((0, 30), (dims.0, dims.1 - 30)), &legend, 96)
+}
+
+/// A panel's crank-angle span and padded value range `(x0, x1, y0, y1)`: the whole cycle, or a
+/// 90° window centred on a single instant (a steady case).
+fn panel_ranges(curves: &[Curve], ctx: &FigureContext) -> (f64, f64, f64, f64) {
     let (mut y0, mut y1) = (f64::MAX, f64::MIN);
     let (mut x0, mut x1) = (f64::MAX, f64::MIN);
     for (x, y) in curves.iter().flat_map(|c| c.points.iter()) {
@@ -705,8 +726,18 @@ fn draw_panel(
     } else {
         (x0 - 45.0, x0 + 45.0)
     };
-    let mut chart = crank_angle_chart(&area, (x0, x1), (y0, y1), ylabel)?;
-    // The feed window behind the data, then TDC (crank 0° and every full turn) dotted.
+    (x0, x1, y0, y1)
+}
+
+/// Behind a panel's data: the feed window shaded, then TDC (crank 0° and every full turn)
+/// dotted and labelled.
+fn draw_feed_and_tdc(
+    chart: &mut Chart2d<'_, '_>,
+    ctx: &FigureContext,
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
     for (a, b) in &ctx.feed_windows {
         chart
             .draw_series(std::iter::once(Rectangle::new(
@@ -738,6 +769,18 @@ fn draw_panel(
         }
         tdc += 360.0;
     }
+    Ok(())
+}
+
+/// A panel's curves, closed over the cycle when the panel spans it (`x1` the cycle's end); a
+/// single sample (a steady case) marked by a dot.
+fn draw_panel_curves(
+    chart: &mut Chart2d<'_, '_>,
+    curves: &[Curve],
+    ctx: &FigureContext,
+    x1: f64,
+) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
     for c in curves {
         let style = c.color.stroke_width(3);
         // A single sample (a steady case) draws no line: mark it.
@@ -904,6 +947,8 @@ fn side_legend(
     Ok(())
 }
 
+/// `CASE_orbit.png`: the clearance circle with its grooves and the peak load's direction, every
+/// method's orbit on it, and the legend beside the circle.
 fn draw_orbit(r: &CaseReport, ctx: &FigureContext, path: &Path, size: u32) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<_>| e.to_string();
     // The title block on top of a square chart area, so that the circle is round.
@@ -918,7 +963,27 @@ fn draw_orbit(r: &CaseReport, ctx: &FigureContext, path: &Path, size: u32) -> Re
         ctx,
     )?;
     let (plot, legend_area) = body.split_horizontally(size);
-    let mut chart = ChartBuilder::on(&plot)
+    let mut chart = orbit_chart(&plot)?;
+    let mut legend = vec![(
+        format!("clearance circle, c = {:.1} µm", c * 1e6),
+        BLACK,
+        Mark::Line,
+    )];
+    draw_clearance_circles(&mut chart)?;
+    legend.extend(draw_grooves(&mut chart, &ctx.grooves)?);
+    legend.extend(draw_peak_load_direction(&mut chart, r)?);
+    legend.extend(draw_method_orbits(&mut chart, r, c)?);
+    legend.push(("crank 0° (start); dots every 30°".into(), BLACK, Mark::Dot));
+    side_legend(&legend_area, &legend)?;
+    root.present().map_err(e)
+}
+
+/// The orbit's axes, e / c both ways from −1.15 to 1.15, with their ticks and labels.
+fn orbit_chart<'a, 'b>(
+    plot: &'a DrawingArea<BitMapBackend<'b>, Shift>,
+) -> Result<Chart2d<'a, 'b>, String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
+    let mut chart = ChartBuilder::on(plot)
         .margin(16)
         .x_label_area_size(64)
         .y_label_area_size(64)
@@ -937,11 +1002,12 @@ fn draw_orbit(r: &CaseReport, ctx: &FigureContext, path: &Path, size: u32) -> Re
         .light_line_style(TRANSPARENT)
         .draw()
         .map_err(e)?;
-    let mut legend = vec![(
-        format!("clearance circle, c = {:.1} µm", c * 1e6),
-        BLACK,
-        Mark::Line,
-    )];
+    Ok(chart)
+}
+
+/// The clearance circle (e = c) and dashed rings at e / c = 0.25, 0.5, 0.75.
+fn draw_clearance_circles(chart: &mut Chart2d<'_, '_>) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
     chart
         .draw_series(LineSeries::new(circle_points(1.0), BLACK.stroke_width(2)))
         .map_err(e)?;
@@ -955,9 +1021,18 @@ fn draw_orbit(r: &CaseReport, ctx: &FigureContext, path: &Path, size: u32) -> Re
             ))
             .map_err(e)?;
     }
-    // Grooves: thick arcs on the circle.
+    Ok(())
+}
+
+/// The grooves (centre, angular width in rad) as thick arcs on the circle; their legend entry
+/// when there is one.
+fn draw_grooves(
+    chart: &mut Chart2d<'_, '_>,
+    grooves: &[(f64, f64)],
+) -> Result<Option<LegendEntry>, String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
     let groove_color = RGBColor(20, 140, 70);
-    for (centre, width) in &ctx.grooves {
+    for (centre, width) in grooves {
         let arc: Vec<(f64, f64)> = (0..=64)
             .map(|k| {
                 let a = centre - 0.5 * width + width * k as f64 / 64.0;
@@ -968,44 +1043,66 @@ fn draw_orbit(r: &CaseReport, ctx: &FigureContext, path: &Path, size: u32) -> Re
             .draw_series(LineSeries::new(arc, groove_color.stroke_width(9)))
             .map_err(e)?;
     }
-    if !ctx.grooves.is_empty() {
-        legend.push(("groove".into(), groove_color, Mark::Line));
-    }
-    // The direction of the peak load, from the centre.
-    if let Some((m, wx, wy)) = r
+    Ok((!grooves.is_empty()).then(|| ("groove".into(), groove_color, Mark::Line)))
+}
+
+/// An arrow from the centre in the direction of the largest load of the first method that has
+/// the load, and its legend entry (with the crank angle of the peak); nothing without a load.
+fn draw_peak_load_direction(
+    chart: &mut Chart2d<'_, '_>,
+    r: &CaseReport,
+) -> Result<Option<LegendEntry>, String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
+    let Some((m, wx, wy)) = r
         .methods
         .iter()
         .find_map(|m| Some((m, m.series(names::LOAD_X)?, m.series(names::LOAD_Y)?)))
-        && let Some((k, _)) = wx
-            .values
-            .iter()
-            .zip(&wy.values)
-            .map(|(x, y)| x.hypot(*y))
-            .enumerate()
-            .max_by(|a, b| a.1.total_cmp(&b.1))
-    {
-        let (x, y) = (wx.values[k], wy.values[k]);
-        let n = x.hypot(y);
-        if n > 0.0 {
-            let tip = (0.85 * x / n, 0.85 * y / n);
+    else {
+        return Ok(None);
+    };
+    let Some((k, _)) = wx
+        .values
+        .iter()
+        .zip(&wy.values)
+        .map(|(x, y)| x.hypot(*y))
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+    else {
+        return Ok(None);
+    };
+    let (x, y) = (wx.values[k], wy.values[k]);
+    let n = x.hypot(y);
+    if n > 0.0 {
+        let tip = (0.85 * x / n, 0.85 * y / n);
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(0.0, 0.0), tip],
+                GREY.stroke_width(3),
+            )))
+            .map_err(e)?;
+        if let Some(head) = arrow_head(tip, (x, y), 0.08) {
             chart
-                .draw_series(std::iter::once(PathElement::new(
-                    vec![(0.0, 0.0), tip],
-                    GREY.stroke_width(3),
-                )))
+                .draw_series(std::iter::once(Polygon::new(head, GREY.filled())))
                 .map_err(e)?;
-            if let Some(head) = arrow_head(tip, (x, y), 0.08) {
-                chart
-                    .draw_series(std::iter::once(Polygon::new(head, GREY.filled())))
-                    .map_err(e)?;
-            }
-            legend.push((
-                format!("peak load direction ({:.0}°)", m.crank_angle[k]),
-                GREY,
-                Mark::Line,
-            ));
         }
+        return Ok(Some((
+            format!("peak load direction ({:.0}°)", m.crank_angle[k]),
+            GREY,
+            Mark::Line,
+        )));
     }
+    Ok(None)
+}
+
+/// Every method's orbit in e / c (crank-angle labels on the rigorous one, else the first), its
+/// start at crank 0° marked alike for all, and a legend entry per method drawn.
+fn draw_method_orbits(
+    chart: &mut Chart2d<'_, '_>,
+    r: &CaseReport,
+    c: f64,
+) -> Result<Vec<LegendEntry>, String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
+    let mut legend = Vec::new();
     let labelled = r
         .methods
         .iter()
@@ -1027,7 +1124,7 @@ fn draw_orbit(r: &CaseReport, ctx: &FigureContext, path: &Path, size: u32) -> Re
         let color = method_color(m.method);
         let dashed = m.method == Method::Mobility;
         draw_locus(
-            &mut chart,
+            chart,
             &pts,
             &m.crank_angle,
             color,
@@ -1049,9 +1146,7 @@ fn draw_orbit(r: &CaseReport, ctx: &FigureContext, path: &Path, size: u32) -> Re
         let mark = if dashed { Mark::Dashed } else { Mark::Line };
         legend.push((m.method.to_string(), color, mark));
     }
-    legend.push(("crank 0° (start); dots every 30°".into(), BLACK, Mark::Dot));
-    side_legend(&legend_area, &legend)?;
-    root.present().map_err(e)
+    Ok(legend)
 }
 
 /// The polar load diagram: the load vector's tip over the cycle.
@@ -1084,33 +1179,7 @@ fn draw_load(r: &CaseReport, ctx: &FigureContext, path: &Path, size: u32) -> Res
         .fold(0.0, f64::max)
         .max(1e-9)
         * 1.15;
-    let mut chart = ChartBuilder::on(&body)
-        .margin(16)
-        .x_label_area_size(72)
-        .y_label_area_size(72)
-        .build_cartesian_2d(-reach..reach, -reach..reach)
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .x_labels(9)
-        .y_labels(9)
-        .x_desc("W_x [kN]  (bearing frame)")
-        .y_desc("W_y [kN]")
-        .label_style((FAMILY, 17).into_font())
-        .axis_desc_style((FAMILY, 20).into_font())
-        .x_label_formatter(&|v| format_tick(*v))
-        .y_label_formatter(&|v| format_tick(*v))
-        .light_line_style(RGBColor(240, 240, 240))
-        .draw()
-        .map_err(e)?;
-    for axis in [[(-reach, 0.0), (reach, 0.0)], [(0.0, -reach), (0.0, reach)]] {
-        chart
-            .draw_series(std::iter::once(PathElement::new(
-                axis.to_vec(),
-                GREY.stroke_width(1),
-            )))
-            .map_err(e)?;
-    }
+    let mut chart = load_chart(&body, reach)?;
     draw_locus(
         &mut chart,
         &pts,
@@ -1137,6 +1206,43 @@ fn draw_load(r: &CaseReport, ctx: &FigureContext, path: &Path, size: u32) -> Res
     root.present().map_err(e)
 }
 
+/// The load diagram's axes, W_x and W_y in kN from −`reach` to `reach`, with the axis lines
+/// through the origin.
+fn load_chart<'a, 'b>(
+    body: &'a DrawingArea<BitMapBackend<'b>, Shift>,
+    reach: f64,
+) -> Result<Chart2d<'a, 'b>, String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
+    let mut chart = ChartBuilder::on(body)
+        .margin(16)
+        .x_label_area_size(72)
+        .y_label_area_size(72)
+        .build_cartesian_2d(-reach..reach, -reach..reach)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_labels(9)
+        .y_labels(9)
+        .x_desc("W_x [kN]  (bearing frame)")
+        .y_desc("W_y [kN]")
+        .label_style((FAMILY, 17).into_font())
+        .axis_desc_style((FAMILY, 20).into_font())
+        .x_label_formatter(&|v| format_tick(*v))
+        .y_label_formatter(&|v| format_tick(*v))
+        .light_line_style(RGBColor(240, 240, 240))
+        .draw()
+        .map_err(e)?;
+    for axis in [[(-reach, 0.0), (reach, 0.0)], [(0.0, -reach), (0.0, reach)]] {
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                axis.to_vec(),
+                GREY.stroke_width(1),
+            )))
+            .map_err(e)?;
+    }
+    Ok(chart)
+}
+
 /// The deformable bearing along the film surface against θ (bearing frame): the stresses on the
 /// housing bore (σ_r, σ_θ, σ_z, von Mises, with −p̄, which σ_r equals where the film presses) and
 /// below it the deformed film thickness h and the gap change g.
@@ -1161,10 +1267,31 @@ fn draw_elastic(
     )?;
     let (top, bottom) = body.split_vertically((size.1 as f64 * 0.58) as u32);
     let deg: Vec<f64> = el.angle.iter().map(|a| a.to_degrees()).collect();
+    let (stresses, minus_p, film) = elastic_curves(el);
+    for (area, curves, extra, y_desc) in [
+        (
+            &top,
+            &stresses,
+            Some(&minus_p),
+            "stress on the housing bore [MPa]",
+        ),
+        (&bottom, &film, None, "film [µm]"),
+    ] {
+        draw_elastic_panel(area, &deg, curves, extra, y_desc)?;
+    }
+    root.present().map_err(e)
+}
+
+/// A curve against θ: legend label, values in display units, colour.
+type ThetaCurve = (&'static str, Vec<f64>, RGBColor);
+
+/// The elastic figure's curves in display units: the bore stresses [MPa], −p̄ [MPa] (empty
+/// without the pressure) and the film h, g [µm]; a series the report lacks is left out.
+fn elastic_curves(el: &super::ElasticReport) -> (Vec<ThetaCurve>, Vec<f64>, Vec<ThetaCurve>) {
     let get = |name: &str| el.series(name).map(|s| s.values.clone());
     let mpa = |v: Vec<f64>| v.into_iter().map(|x| x * 1e-6).collect::<Vec<_>>();
     let um = |v: Vec<f64>| v.into_iter().map(|x| x * 1e6).collect::<Vec<_>>();
-    let stresses: Vec<(&str, Vec<f64>, RGBColor)> = [
+    let stresses: Vec<ThetaCurve> = [
         ("σ_r", "bore_radial_stress", RGBColor(200, 30, 30)),
         ("σ_θ", "bore_hoop_stress", RGBColor(30, 90, 200)),
         ("σ_z", "bore_axial_stress", RGBColor(30, 150, 60)),
@@ -1176,92 +1303,92 @@ fn draw_elastic(
     let minus_p: Vec<f64> = get("surface_pressure")
         .map(|v| v.into_iter().map(|x| -x * 1e-6).collect())
         .unwrap_or_default();
-    let film: Vec<(&str, Vec<f64>, RGBColor)> = [
+    let film: Vec<ThetaCurve> = [
         ("h (deformed film)", "film_thickness", RGBColor(30, 90, 200)),
         ("g (gap change)", "gap_change", RGBColor(200, 120, 20)),
     ]
     .into_iter()
     .filter_map(|(label, name, color)| Some((label, um(get(name)?), color)))
     .collect();
-    for (area, curves, extra, y_desc) in [
-        (
-            &top,
-            &stresses,
-            Some(&minus_p),
-            "stress on the housing bore [MPa]",
-        ),
-        (&bottom, &film, None, "film [µm]"),
-    ] {
-        let all = curves
-            .iter()
-            .flat_map(|c| c.1.iter())
-            .chain(extra.into_iter().flatten())
-            .copied()
-            .filter(|v| v.is_finite());
-        let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(v), b.max(v))
-        });
-        if !(lo.is_finite() && hi.is_finite()) {
-            note_panel(area, y_desc, "not in the results")?;
-            continue;
-        }
-        let (lo, hi) = padded_range(lo, hi);
-        let mut chart = ChartBuilder::on(area)
-            .margin(16)
-            .x_label_area_size(56)
-            .y_label_area_size(86)
-            .build_cartesian_2d(0.0..360.0, lo..hi)
-            .map_err(e)?;
-        chart
-            .configure_mesh()
-            .x_labels(13)
-            .y_labels(8)
-            .x_desc("θ [°] (bearing frame, from +x towards +y)")
-            .y_desc(y_desc)
-            .label_style((FAMILY, 17).into_font())
-            .axis_desc_style((FAMILY, 20).into_font())
-            .x_label_formatter(&|v| format_tick(*v))
-            .y_label_formatter(&|v| format_tick(*v))
-            .light_line_style(RGBColor(240, 240, 240))
-            .draw()
-            .map_err(e)?;
-        if let Some(p) = extra.filter(|p| !p.is_empty()) {
-            chart
-                .draw_series(DashedLineSeries::new(
-                    deg.iter().copied().zip(p.iter().copied()),
-                    8,
-                    5,
-                    RGBColor(150, 150, 150).stroke_width(2),
-                ))
-                .map_err(e)?
-                .label("−p (film pressure, mean over the length)")
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 24, y)], RGBColor(150, 150, 150))
-                });
-        }
-        for (label, values, color) in curves.iter() {
-            let color = *color;
-            chart
-                .draw_series(LineSeries::new(
-                    deg.iter().copied().zip(values.iter().copied()),
-                    color.stroke_width(3),
-                ))
-                .map_err(e)?
-                .label(*label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
-                });
-        }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font((FAMILY, 18).into_font())
-            .position(SeriesLabelPosition::LowerLeft)
-            .draw()
-            .map_err(e)?;
+    (stresses, minus_p, film)
+}
+
+/// One panel of the elastic figure: `curves` against θ over 0 … 360°, the dashed `extra` (−p̄)
+/// behind them when given, and the legend in the lower left; a note when nothing is finite.
+fn draw_elastic_panel(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    deg: &[f64],
+    curves: &[ThetaCurve],
+    extra: Option<&Vec<f64>>,
+    y_desc: &str,
+) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
+    let all = curves
+        .iter()
+        .flat_map(|c| c.1.iter())
+        .chain(extra.into_iter().flatten())
+        .copied()
+        .filter(|v| v.is_finite());
+    let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    });
+    if !(lo.is_finite() && hi.is_finite()) {
+        return note_panel(area, y_desc, "not in the results");
     }
-    root.present().map_err(e)
+    let (lo, hi) = padded_range(lo, hi);
+    let mut chart = ChartBuilder::on(area)
+        .margin(16)
+        .x_label_area_size(56)
+        .y_label_area_size(86)
+        .build_cartesian_2d(0.0..360.0, lo..hi)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_labels(13)
+        .y_labels(8)
+        .x_desc("θ [°] (bearing frame, from +x towards +y)")
+        .y_desc(y_desc)
+        .label_style((FAMILY, 17).into_font())
+        .axis_desc_style((FAMILY, 20).into_font())
+        .x_label_formatter(&|v| format_tick(*v))
+        .y_label_formatter(&|v| format_tick(*v))
+        .light_line_style(RGBColor(240, 240, 240))
+        .draw()
+        .map_err(e)?;
+    if let Some(p) = extra.filter(|p| !p.is_empty()) {
+        chart
+            .draw_series(DashedLineSeries::new(
+                deg.iter().copied().zip(p.iter().copied()),
+                8,
+                5,
+                RGBColor(150, 150, 150).stroke_width(2),
+            ))
+            .map_err(e)?
+            .label("−p (film pressure, mean over the length)")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], RGBColor(150, 150, 150)));
+    }
+    for (label, values, color) in curves.iter() {
+        let color = *color;
+        chart
+            .draw_series(LineSeries::new(
+                deg.iter().copied().zip(values.iter().copied()),
+                color.stroke_width(3),
+            ))
+            .map_err(e)?
+            .label(*label)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font((FAMILY, 18).into_font())
+        .position(SeriesLabelPosition::LowerLeft)
+        .draw()
+        .map_err(e)?;
+    Ok(())
 }
 
 /// The rigorous fields if the report has them: (crank angles, θ, mid-plane pressure [k][i],
@@ -1329,8 +1456,6 @@ fn draw_film(
         return note_panel(&body, "film", "no stored fields");
     };
     let panels = body.split_evenly((2, 1));
-    let dc = crank[1] - crank[0];
-    let dth = 360.0 / theta.len() as f64;
     for (area, (name, unit, values, scale)) in panels.iter().zip([
         ("film pressure", "MPa", &pressure, 1e-6),
         (
@@ -1348,75 +1473,121 @@ fn draw_film(
                 (a.min(v * scale), b.max(v * scale))
             });
         let hi = if hi > lo { hi } else { lo + 1.0 };
-        let mut chart = ChartBuilder::on(&main)
-            .caption(name, (FAMILY, 22).into_font())
-            .margin(10)
-            .x_label_area_size(48)
-            .y_label_area_size(70)
-            .build_cartesian_2d(0.0..ctx.cycle / 90.0, 0.0..4.0)
-            .map_err(e)?;
-        // Both axes in quarter turns so that the ticks fall on 0°, 90°, … (crank angle up to
-        // the cycle, θ up to 360°).
-        chart
-            .configure_mesh()
-            .x_labels((ctx.cycle / 90.0).round() as usize + 1)
-            .y_labels(5)
-            .x_desc("crank angle [deg]")
-            .y_desc("θ [deg] from +x")
-            .label_style((FAMILY, 16).into_font())
-            .axis_desc_style((FAMILY, 18).into_font())
-            .x_label_formatter(&|v| format!("{:.0}", v * 90.0))
-            .y_label_formatter(&|v| format!("{:.0}", v * 90.0))
-            .disable_mesh()
-            .draw()
-            .map_err(e)?;
-        // One cell per (instant, node), centred on both; the periodic wrap fills the edges: the
-        // instant at 0° again at the cycle's end, the node at θ = 0 again at 360°.
-        let q = 90.0;
-        let mut cells = Vec::new();
-        let mut instants: Vec<(f64, &Vec<f64>)> =
-            crank.iter().copied().zip(values.iter()).collect();
-        if crank[0] == 0.0 {
-            instants.push((ctx.cycle, &values[0]));
-        }
-        for (c, row) in instants {
-            let (c0, c1) = ((c - 0.5 * dc).max(0.0), (c + 0.5 * dc).min(ctx.cycle));
-            for i in 0..=row.len() {
-                let v = row[i % row.len()];
-                let t = i as f64 * dth;
-                let (t0, t1) = ((t - 0.5 * dth).max(0.0), (t + 0.5 * dth).min(360.0));
-                cells.push(Rectangle::new(
-                    [(c0 / q, t0 / q), (c1 / q, t1 / q)],
-                    ramp((v * scale - lo) / (hi - lo)).filled(),
-                ));
-            }
-        }
-        chart.draw_series(cells).map_err(e)?;
-        // Colour bar.
-        let mut cb = ChartBuilder::on(&bar)
-            .margin_top(40)
-            .margin_bottom(58)
-            .margin_right(10)
-            .y_label_area_size(70)
-            .build_cartesian_2d(0.0..1.0, lo..hi)
-            .map_err(e)?;
-        cb.configure_mesh()
-            .disable_x_axis()
-            .disable_mesh()
-            .y_labels(6)
-            .y_desc(unit)
-            .label_style((FAMILY, 15).into_font())
-            .y_label_formatter(&|v| format_tick(*v))
-            .draw()
-            .map_err(e)?;
-        cb.draw_series((0..100).map(|k| {
-            let a = lo + (hi - lo) * k as f64 / 100.0;
-            let b = lo + (hi - lo) * (k + 1) as f64 / 100.0;
-            Rectangle::new([(0.0, a), (1.0, b)], ramp(k as f64 / 99.0).filled())
-        }))
-        .map_err(e)?;
+        let map = FilmMap {
+            crank: &crank,
+            n_theta: theta.len(),
+            values,
+            scale,
+            range: (lo, hi),
+        };
+        draw_film_map(&main, name, &map, ctx)?;
+        draw_colour_bar(&bar, unit, (lo, hi))?;
     }
     root.present().map_err(e)
+}
+
+/// One mid-plane field of the film figure over (crank angle, θ), scaled for display.
+struct FilmMap<'a> {
+    /// Crank angles of the snapshots (deg), evenly spaced.
+    crank: &'a [f64],
+    /// Nodes around, evenly spaced from θ = 0.
+    n_theta: usize,
+    /// Values [snapshot][node], SI.
+    values: &'a [Vec<f64>],
+    /// Display scale of the values.
+    scale: f64,
+    /// Colour range (display units): low and high ends of the ramp.
+    range: (f64, f64),
+}
+
+/// A field's map over (crank angle, θ): axes in quarter turns and one coloured cell per
+/// (instant, node).
+fn draw_film_map(
+    main: &DrawingArea<BitMapBackend<'_>, Shift>,
+    name: &str,
+    map: &FilmMap<'_>,
+    ctx: &FigureContext,
+) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
+    let (crank, values, scale, (lo, hi)) = (map.crank, map.values, map.scale, map.range);
+    let dc = crank[1] - crank[0];
+    let dth = 360.0 / map.n_theta as f64;
+    let mut chart = ChartBuilder::on(main)
+        .caption(name, (FAMILY, 22).into_font())
+        .margin(10)
+        .x_label_area_size(48)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..ctx.cycle / 90.0, 0.0..4.0)
+        .map_err(e)?;
+    // Both axes in quarter turns so that the ticks fall on 0°, 90°, … (crank angle up to
+    // the cycle, θ up to 360°).
+    chart
+        .configure_mesh()
+        .x_labels((ctx.cycle / 90.0).round() as usize + 1)
+        .y_labels(5)
+        .x_desc("crank angle [deg]")
+        .y_desc("θ [deg] from +x")
+        .label_style((FAMILY, 16).into_font())
+        .axis_desc_style((FAMILY, 18).into_font())
+        .x_label_formatter(&|v| format!("{:.0}", v * 90.0))
+        .y_label_formatter(&|v| format!("{:.0}", v * 90.0))
+        .disable_mesh()
+        .draw()
+        .map_err(e)?;
+    // One cell per (instant, node), centred on both; the periodic wrap fills the edges: the
+    // instant at 0° again at the cycle's end, the node at θ = 0 again at 360°.
+    let q = 90.0;
+    let mut cells = Vec::new();
+    let mut instants: Vec<(f64, &Vec<f64>)> = crank.iter().copied().zip(values.iter()).collect();
+    if crank[0] == 0.0 {
+        instants.push((ctx.cycle, &values[0]));
+    }
+    for (c, row) in instants {
+        let (c0, c1) = ((c - 0.5 * dc).max(0.0), (c + 0.5 * dc).min(ctx.cycle));
+        for i in 0..=row.len() {
+            let v = row[i % row.len()];
+            let t = i as f64 * dth;
+            let (t0, t1) = ((t - 0.5 * dth).max(0.0), (t + 0.5 * dth).min(360.0));
+            cells.push(Rectangle::new(
+                [(c0 / q, t0 / q), (c1 / q, t1 / q)],
+                ramp((v * scale - lo) / (hi - lo)).filled(),
+            ));
+        }
+    }
+    chart.draw_series(cells).map_err(e)?;
+    Ok(())
+}
+
+/// The colour bar beside a film map: the ramp from `lo` to `hi` with its ticks in `unit`.
+fn draw_colour_bar(
+    bar: &DrawingArea<BitMapBackend<'_>, Shift>,
+    unit: &str,
+    (lo, hi): (f64, f64),
+) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
+    let mut cb = ChartBuilder::on(bar)
+        .margin_top(40)
+        .margin_bottom(58)
+        .margin_right(10)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..1.0, lo..hi)
+        .map_err(e)?;
+    cb.configure_mesh()
+        .disable_x_axis()
+        .disable_mesh()
+        .y_labels(6)
+        .y_desc(unit)
+        .label_style((FAMILY, 15).into_font())
+        .y_label_formatter(&|v| format_tick(*v))
+        .draw()
+        .map_err(e)?;
+    cb.draw_series((0..100).map(|k| {
+        let a = lo + (hi - lo) * k as f64 / 100.0;
+        let b = lo + (hi - lo) * (k + 1) as f64 / 100.0;
+        Rectangle::new([(0.0, a), (1.0, b)], ramp(k as f64 / 99.0).filled())
+    }))
+    .map_err(e)?;
+    Ok(())
 }
 
 #[cfg(test)]
