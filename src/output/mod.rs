@@ -915,6 +915,8 @@ fn strictly_increasing(what: &str, values: &[f64]) -> Result<(), String> {
     }
 }
 
+/// A method's result: its time and crank-angle samples, then its series, fields and solver
+/// attributes, each checked by its own stage (the first error found is returned).
 fn validate_method(m: &MethodResult) -> Result<(), String> {
     let n = m.time.len();
     if n == 0 {
@@ -928,8 +930,17 @@ fn validate_method(m: &MethodResult) -> Result<(), String> {
         ));
     }
     finite_all("crank_angle", &m.crank_angle)?;
+    validate_series(&m.series, n)?;
+    if let Some(f) = &m.fields {
+        validate_fields(f)?;
+    }
+    validate_solver_info(&m.solver_info)
+}
+
+/// Series: valid names that are not coordinates and appear once, `n` finite values each.
+fn validate_series(series: &[Series], n: usize) -> Result<(), String> {
     let mut names = HashSet::new();
-    for s in &m.series {
+    for s in series {
         check_name(&s.name)?;
         if COORDINATE_NAMES.contains(&s.name.as_str()) {
             return Err(format!(
@@ -949,60 +960,70 @@ fn validate_method(m: &MethodResult) -> Result<(), String> {
         }
         finite_all(&s.name, &s.values)?;
     }
-    if let Some(f) = &m.fields {
-        let nt = f.time.len();
-        if nt == 0 {
-            return Err("fields: no instants".into());
-        }
-        strictly_increasing("fields.time", &f.time)?;
-        if f.crank_angle.len() != nt {
+    Ok(())
+}
+
+/// Field snapshots: increasing finite instants, a periodic θ grid in [0, 2π) and a z grid,
+/// fields with valid unique names, the (instants, n_θ, n_z) shape and finite values.
+fn validate_fields(f: &FieldSnapshots) -> Result<(), String> {
+    let nt = f.time.len();
+    if nt == 0 {
+        return Err("fields: no instants".into());
+    }
+    strictly_increasing("fields.time", &f.time)?;
+    if f.crank_angle.len() != nt {
+        return Err(format!(
+            "fields.crank_angle has {} values for {nt} instants",
+            f.crank_angle.len()
+        ));
+    }
+    finite_all("fields.crank_angle", &f.crank_angle)?;
+    if f.theta.len() < 3 || f.z.len() < 2 {
+        return Err(format!(
+            "fields grid {} × {} is too small (need n_θ ≥ 3, n_z ≥ 2)",
+            f.theta.len(),
+            f.z.len()
+        ));
+    }
+    strictly_increasing("theta", &f.theta)?;
+    strictly_increasing("z", &f.z)?;
+    let (t0, t1) = (f.theta[0], f.theta[f.theta.len() - 1]);
+    if t0 < 0.0 || t1 >= std::f64::consts::TAU {
+        return Err(format!(
+            "theta must lie in [0, 2π) (periodic, last node not repeated): got {t0} … {t1}"
+        ));
+    }
+    let mut fnames = HashSet::new();
+    for fld in &f.fields {
+        check_name(&fld.name)?;
+        if COORDINATE_NAMES.contains(&fld.name.as_str()) {
             return Err(format!(
-                "fields.crank_angle has {} values for {nt} instants",
-                f.crank_angle.len()
+                "field name '{}' is reserved for a coordinate",
+                fld.name
             ));
         }
-        finite_all("fields.crank_angle", &f.crank_angle)?;
-        if f.theta.len() < 3 || f.z.len() < 2 {
+        if !fnames.insert(fld.name.as_str()) {
+            return Err(format!("field '{}' appears twice", fld.name));
+        }
+        let want = (nt, f.theta.len(), f.z.len());
+        if fld.values.dim() != want {
             return Err(format!(
-                "fields grid {} × {} is too small (need n_θ ≥ 3, n_z ≥ 2)",
-                f.theta.len(),
-                f.z.len()
+                "field '{}' has shape {:?}, expected (instants, n_θ, n_z) = {want:?}",
+                fld.name,
+                fld.values.dim()
             ));
         }
-        strictly_increasing("theta", &f.theta)?;
-        strictly_increasing("z", &f.z)?;
-        let (t0, t1) = (f.theta[0], f.theta[f.theta.len() - 1]);
-        if t0 < 0.0 || t1 >= std::f64::consts::TAU {
-            return Err(format!(
-                "theta must lie in [0, 2π) (periodic, last node not repeated): got {t0} … {t1}"
-            ));
-        }
-        let mut fnames = HashSet::new();
-        for fld in &f.fields {
-            check_name(&fld.name)?;
-            if COORDINATE_NAMES.contains(&fld.name.as_str()) {
-                return Err(format!(
-                    "field name '{}' is reserved for a coordinate",
-                    fld.name
-                ));
-            }
-            if !fnames.insert(fld.name.as_str()) {
-                return Err(format!("field '{}' appears twice", fld.name));
-            }
-            let want = (nt, f.theta.len(), f.z.len());
-            if fld.values.dim() != want {
-                return Err(format!(
-                    "field '{}' has shape {:?}, expected (instants, n_θ, n_z) = {want:?}",
-                    fld.name,
-                    fld.values.dim()
-                ));
-            }
-            if let Some((idx, v)) = fld.values.indexed_iter().find(|(_, v)| !v.is_finite()) {
-                return Err(format!("field '{}'{idx:?} = {v} is not finite", fld.name));
-            }
+        if let Some((idx, v)) = fld.values.indexed_iter().find(|(_, v)| !v.is_finite()) {
+            return Err(format!("field '{}'{idx:?} = {v} is not finite", fld.name));
         }
     }
-    for (k, v) in &m.solver_info {
+    Ok(())
+}
+
+/// Solver attributes: valid keys other than the group's own `method` and `description`, finite
+/// numbers.
+fn validate_solver_info(info: &[(String, ParameterValue)]) -> Result<(), String> {
+    for (k, v) in info {
         check_name(k)?;
         if k == "method" || k == "description" {
             return Err(format!(

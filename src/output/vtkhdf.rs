@@ -59,10 +59,35 @@ pub fn write_surface(
     method: Method,
     f: &FieldSnapshots,
 ) -> h5::Result<()> {
-    let (nth, nz, nt) = (f.theta.len(), f.z.len(), f.time.len());
-    let n_points = surface_point_count(nth, nz);
-    let n_cells = surface_cell_count(nth, nz);
+    let n_points = surface_point_count(f.theta.len(), f.z.len());
+    let about = format!(
+        "film fields of the {} solution on the bearing surface r = R = {} m; one time step per \
+         stored instant (Steps/Values, s)",
+        method.as_str(),
+        geometry.radius
+    );
+    let root = create_root(file, &about)?;
 
+    let (points, connectivity) = surface_mesh(geometry, f);
+    write_quad_topology(&root, &points, &connectivity)?;
+
+    let point_data = root.create_group("PointData")?;
+    for fld in &f.fields {
+        // Row-major (instant, θ, z) flattened is (instant, point): exactly the layout wanted.
+        let flat: Vec<f64> = fld.values.iter().copied().collect();
+        let mut b = point_data.new_dataset_builder();
+        if h5::filters::deflate_available() {
+            b = b.chunk(n_points).shuffle().deflate(4);
+        }
+        b.with_data(&flat[..]).create(fld.name.as_str())?;
+    }
+
+    write_surface_steps(&root, f, n_points)?;
+    Ok(())
+}
+
+/// The `/VTKHDF` group of an `UnstructuredGrid` (VTKHDF version 2.2) with its `description`.
+fn create_root(file: &h5::File, about: &str) -> h5::Result<h5::Group> {
     let root = file.create_group("VTKHDF")?;
     root.new_attr::<i64>()
         .shape(2)
@@ -74,18 +99,19 @@ pub fn write_surface(
         .shape(())
         .create("Type")?
         .write_scalar(&kind)?;
-    let about = format!(
-        "film fields of the {} solution on the bearing surface r = R = {} m; one time step per \
-         stored instant (Steps/Values, s)",
-        method.as_str(),
-        geometry.radius
-    );
     let about: hdf5_metno::types::VarLenUnicode = about.parse().expect("no NUL");
     root.new_attr::<hdf5_metno::types::VarLenUnicode>()
         .shape(())
         .create("description")?
         .write_scalar(&about)?;
+    Ok(root)
+}
 
+/// The film surface r = R as points (θ outer, z inner; x y z, m) and its quads, closed in θ.
+fn surface_mesh(geometry: &Geometry, f: &FieldSnapshots) -> (ndarray::Array2<f64>, Vec<i64>) {
+    let (nth, nz) = (f.theta.len(), f.z.len());
+    let n_points = surface_point_count(nth, nz);
+    let n_cells = surface_cell_count(nth, nz);
     let mut points = ndarray::Array2::<f64>::zeros((n_points, 3));
     for (i, th) in f.theta.iter().enumerate() {
         for (j, z) in f.z.iter().enumerate() {
@@ -107,19 +133,13 @@ pub fn write_surface(
             ]);
         }
     }
-    write_quad_topology(&root, &points, &connectivity)?;
+    (points, connectivity)
+}
 
-    let point_data = root.create_group("PointData")?;
-    for fld in &f.fields {
-        // Row-major (instant, θ, z) flattened is (instant, point): exactly the layout wanted.
-        let flat: Vec<f64> = fld.values.iter().copied().collect();
-        let mut b = point_data.new_dataset_builder();
-        if h5::filters::deflate_available() {
-            b = b.chunk(n_points).shuffle().deflate(4);
-        }
-        b.with_data(&flat[..]).create(fld.name.as_str())?;
-    }
-
+/// `Steps`: one time step per stored instant (its time in `Values`), every step on the same
+/// single part, points and cells, and each field's data `n_points` further on.
+fn write_surface_steps(root: &h5::Group, f: &FieldSnapshots, n_points: usize) -> h5::Result<()> {
+    let nt = f.time.len();
     let steps = root.create_group("Steps")?;
     steps
         .new_attr::<i64>()
@@ -167,28 +187,13 @@ pub fn write_surface(
 pub fn write_bodies(file: &h5::File, bodies: &[super::BodyField]) -> h5::Result<()> {
     let n_points: usize = bodies.iter().map(|b| b.points.len()).sum();
     let n_cells: usize = bodies.iter().map(|b| b.cells.len()).sum();
-    let root = file.create_group("VTKHDF")?;
-    root.new_attr::<i64>()
-        .shape(2)
-        .create("Version")?
-        .write(&[2i64, 2])?;
-    let kind: FixedAscii<16> = FixedAscii::from_ascii(b"UnstructuredGrid")
-        .map_err(|e| h5::Error::from(e.to_string().as_str()))?;
-    root.new_attr::<FixedAscii<16>>()
-        .shape(())
-        .create("Type")?
-        .write_scalar(&kind)?;
     let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
     let about = format!(
         "plane-strain bodies of the deformable bearing ({}; CellData body = index in this \
          list), undeformed points (m), nodal displacement (m) and stresses (Pa)",
         names.join(", ")
     );
-    let about: hdf5_metno::types::VarLenUnicode = about.parse().expect("no NUL");
-    root.new_attr::<hdf5_metno::types::VarLenUnicode>()
-        .shape(())
-        .create("description")?
-        .write_scalar(&about)?;
+    let root = create_root(file, &about)?;
 
     let mut points = ndarray::Array2::<f64>::zeros((n_points, 3));
     let mut displacement = ndarray::Array2::<f64>::zeros((n_points, 3));
