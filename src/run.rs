@@ -250,82 +250,115 @@ pub fn run_rigorous_from(
     let params = inverse_params(case);
     let history = CaseHistory::new(case);
     let mut adapter = InverseAdapter::new(&case.name, observer);
-    let fail = |source: RigorousError| RunError::Rigorous {
-        case: case.name.clone(),
-        source,
+    observer.method_started(&case.name, Method::Rigorous);
+    let run = RigorousRun {
+        case,
+        params: &params,
+        history: &history,
     };
     let (solution, end, description) = match case.solver.rigorous_film {
-        RigorousFilm::Reynolds if case.elastic.is_some() => {
-            observer.method_started(&case.name, Method::Rigorous);
-            let elastic = case.elastic.clone().expect("matched");
-            let bearing = jbearing_solvers::elastic::ElasticBearing::new(case.radius, elastic)
-                .map_err(|e| fail(e.into()))?;
-            let mut film =
-                jbearing_solvers::elastic::ElasticFilm::new(reynolds_params(case), &bearing)
-                    .map_err(|e| fail(e.into()))?;
-            let from = match start {
-                Some(RigorousStart::Elastic(s)) => Some(InverseStart::clone(s)),
-                _ => None,
-            };
-            let (solution, end) =
-                solve_inverse_from(&params, &history, &mut film, &mut adapter, from)
-                    .map_err(|e| fail(e.into()))?;
-            (
-                solution,
-                RigorousStart::Elastic(Box::new(end)),
-                "inverse solver (Newton on eccentricity per time step) with the mass-conserving \
-                 universal Reynolds (Elrod-Vijayaraghavan, JFO) film and elastic shaft and \
-                 housing ([elastic]: plane-strain FE compliance, the gap g = C p solved \
-                 quasi-statically in every film step)",
-            )
-        }
-        RigorousFilm::Reynolds => {
-            observer.method_started(&case.name, Method::Rigorous);
-            let mut film = ReynoldsFilm::new(reynolds_params(case)).map_err(|e| fail(e.into()))?;
-            let from = match start {
-                Some(RigorousStart::Reynolds(s)) => Some(InverseStart::clone(s)),
-                _ => None,
-            };
-            let (solution, end) =
-                solve_inverse_from(&params, &history, &mut film, &mut adapter, from)
-                    .map_err(|e| fail(e.into()))?;
-            (
-                solution,
-                RigorousStart::Reynolds(Box::new(end)),
-                "inverse solver (Newton on eccentricity per time step) with the mass-conserving \
-                 universal Reynolds (Elrod-Vijayaraghavan, JFO) film",
-            )
-        }
-        RigorousFilm::ShortBearing => {
-            observer.method_started(&case.name, Method::Rigorous);
-            let mut film = ClosedFormFilm::new(
-                ClosedFormModel::ShortGumbelMovingFilm,
-                ClosedFormParams {
-                    radius: case.radius,
-                    length: case.length,
-                    radial_clearance: case.radial_clearance,
-                    viscosity: case.viscosity,
-                },
-                case.solver.time_scheme,
-            )
-            .map_err(|e| fail(e.into()))?;
-            let from = match start {
-                Some(RigorousStart::ShortBearing(s)) => Some(s.clone()),
-                _ => None,
-            };
-            let (solution, end) =
-                solve_inverse_from(&params, &history, &mut film, &mut adapter, from)
-                    .map_err(|e| fail(e.into()))?;
-            (
-                solution,
-                RigorousStart::ShortBearing(end),
-                "inverse solver with the analytic short-bearing film (Gumbel half film, moving \
-                 journal) - NOT the mass-conserving Reynolds film",
-            )
-        }
-    };
+        RigorousFilm::Reynolds if case.elastic.is_some() => run.elastic(&mut adapter, start),
+        RigorousFilm::Reynolds => run.reynolds(&mut adapter, start),
+        RigorousFilm::ShortBearing => run.short_bearing(&mut adapter, start),
+    }
+    .map_err(|source| RunError::Rigorous {
+        case: case.name.clone(),
+        source,
+    })?;
     observer.method_done(&case.name, Method::Rigorous);
     Ok((inverse_result(case, &solution, description), end))
+}
+
+/// What every film of a rigorous run shares: the case, the solver's settings and the case's
+/// histories.
+struct RigorousRun<'a> {
+    case: &'a Case,
+    params: &'a InverseParams,
+    history: &'a CaseHistory<'a>,
+}
+
+/// A rigorous run's answer: the solution, where it ended, and the film's description.
+type RigorousAnswer = (InverseSolution, RigorousStart, &'static str);
+
+impl RigorousRun<'_> {
+    /// The inverse solve with the deformable Reynolds film (a case with `[elastic]`).
+    fn elastic(
+        &self,
+        adapter: &mut InverseAdapter<'_>,
+        start: Option<&RigorousStart>,
+    ) -> Result<RigorousAnswer, RigorousError> {
+        let case = self.case;
+        let elastic = case.elastic.clone().expect("a case with [elastic]");
+        let bearing = jbearing_solvers::elastic::ElasticBearing::new(case.radius, elastic)?;
+        let mut film =
+            jbearing_solvers::elastic::ElasticFilm::new(reynolds_params(case), &bearing)?;
+        let from = match start {
+            Some(RigorousStart::Elastic(s)) => Some(InverseStart::clone(s)),
+            _ => None,
+        };
+        let (solution, end) =
+            solve_inverse_from(self.params, self.history, &mut film, adapter, from)?;
+        Ok((
+            solution,
+            RigorousStart::Elastic(Box::new(end)),
+            "inverse solver (Newton on eccentricity per time step) with the mass-conserving \
+             universal Reynolds (Elrod-Vijayaraghavan, JFO) film and elastic shaft and \
+             housing ([elastic]: plane-strain FE compliance, the gap g = C p solved \
+             quasi-statically in every film step)",
+        ))
+    }
+
+    /// The inverse solve with the rigid Reynolds (JFO) film.
+    fn reynolds(
+        &self,
+        adapter: &mut InverseAdapter<'_>,
+        start: Option<&RigorousStart>,
+    ) -> Result<RigorousAnswer, RigorousError> {
+        let mut film = ReynoldsFilm::new(reynolds_params(self.case))?;
+        let from = match start {
+            Some(RigorousStart::Reynolds(s)) => Some(InverseStart::clone(s)),
+            _ => None,
+        };
+        let (solution, end) =
+            solve_inverse_from(self.params, self.history, &mut film, adapter, from)?;
+        Ok((
+            solution,
+            RigorousStart::Reynolds(Box::new(end)),
+            "inverse solver (Newton on eccentricity per time step) with the mass-conserving \
+             universal Reynolds (Elrod-Vijayaraghavan, JFO) film",
+        ))
+    }
+
+    /// The inverse solve with the analytic moving short-bearing film.
+    fn short_bearing(
+        &self,
+        adapter: &mut InverseAdapter<'_>,
+        start: Option<&RigorousStart>,
+    ) -> Result<RigorousAnswer, RigorousError> {
+        let case = self.case;
+        let mut film = ClosedFormFilm::new(
+            ClosedFormModel::ShortGumbelMovingFilm,
+            ClosedFormParams {
+                radius: case.radius,
+                length: case.length,
+                radial_clearance: case.radial_clearance,
+                viscosity: case.viscosity,
+            },
+            case.solver.time_scheme,
+        )?;
+        let from = match start {
+            Some(RigorousStart::ShortBearing(s)) => Some(s.clone()),
+            _ => None,
+        };
+        let (solution, end) =
+            solve_inverse_from(self.params, self.history, &mut film, adapter, from)?;
+        Ok((
+            solution,
+            RigorousStart::ShortBearing(end),
+            "inverse solver with the analytic short-bearing film (Gumbel half film, moving \
+             journal) - NOT the mass-conserving Reynolds film",
+        ))
+    }
 }
 
 /// Key of the report parameter that says why the rigorous method is missing (it failed).
@@ -553,9 +586,20 @@ fn elastic_scalars(
     rigid_info: &jbearing_solvers::reynolds::SteadyLoadInfo,
     t0: Instant,
 ) -> Vec<Parameter> {
+    let mut scalars = deformed_film_scalars(c, sol, info);
+    scalars.extend(rigid_film_scalars(c, rigid, rigid_info));
+    scalars.extend(coupling_scalars(info, t0));
+    scalars
+}
+
+/// The deformed film's answer: eccentricity, attitude, peak pressure, h_min, force, power.
+fn deformed_film_scalars(
+    c: f64,
+    sol: &jbearing_solvers::elastic::ElasticSolution,
+    info: &jbearing_solvers::elastic::ElasticInfo,
+) -> Vec<Parameter> {
     let eps = info.steady.eccentricity_ratio;
     let f = &sol.film;
-    let e_rigid = rigid_info.eccentricity_ratio;
     vec![
         Parameter::number(
             "eccentricity_ratio_x",
@@ -601,6 +645,17 @@ fn elastic_scalars(
             "film force on the journal, y",
         ),
         Parameter::number("power_loss", f.power_loss, "W", "friction power loss"),
+    ]
+}
+
+/// The rigid film's eccentricity, peak pressure and h_min under the same load.
+fn rigid_film_scalars(
+    c: f64,
+    rigid: &jbearing_solvers::reynolds::FilmSolution,
+    rigid_info: &jbearing_solvers::reynolds::SteadyLoadInfo,
+) -> Vec<Parameter> {
+    let e_rigid = rigid_info.eccentricity_ratio;
+    vec![
         Parameter::number(
             "rigid_eccentricity",
             c * e_rigid[0].hypot(e_rigid[1]),
@@ -619,6 +674,12 @@ fn elastic_scalars(
             "m",
             "minimum film thickness of the rigid film",
         ),
+    ]
+}
+
+/// The coupled solve's statistics: iterations, gap residual, film solves, wall time since `t0`.
+fn coupling_scalars(info: &jbearing_solvers::elastic::ElasticInfo, t0: Instant) -> Vec<Parameter> {
+    vec![
         Parameter::integer(
             "coupling_iterations",
             info.iterations as i64,
@@ -1045,26 +1106,7 @@ fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> 
     let place = |step: usize| (step + 1) % n.max(1);
     let mut snaps: Vec<&jbearing_solvers::inverse::FieldSnapshot> = snaps.iter().collect();
     snaps.sort_by_key(|s| place(s.step_index));
-    let k = snaps.len();
-    let mut pressure = Array3::zeros((k, nt, nz));
-    let mut content = Array3::zeros((k, nt, nz));
-    // h(θ) = c (1 − ε_x cos θ − ε_y sin θ) (docs/conventions.md §1; reynolds/film.rs), the rigid journal's
-    // gap at the snapshot's ε, the same along z.
-    let mut thickness = Array3::zeros((k, nt, nz));
-    for (i, s) in snaps.iter().enumerate() {
-        let eps = sol.steps.get(s.step_index)?.eccentricity_ratio;
-        for it in 0..nt {
-            let th = std::f64::consts::TAU * it as f64 / nt as f64;
-            let h = case.radial_clearance * (1.0 - eps[0] * th.cos() - eps[1] * th.sin());
-            thickness.slice_mut(ndarray::s![i, it, ..]).fill(h);
-        }
-        pressure
-            .index_axis_mut(ndarray::Axis(0), i)
-            .assign(&s.fields.pressure);
-        content
-            .index_axis_mut(ndarray::Axis(0), i)
-            .assign(&s.fields.film_fraction);
-    }
+    let [pressure, content, thickness] = snapshot_arrays(case, sol, &snaps, (nt, nz))?;
     let mut fields = vec![
         Field {
             name: names::PRESSURE.into(),
@@ -1111,6 +1153,37 @@ fn inverse_fields(case: &Case, sol: &InverseSolution) -> Option<FieldSnapshots> 
             .filter(|z| z.len() == nz)?,
         fields,
     })
+}
+
+/// The snapshots' film pressure, film content and film thickness as (instant, θ, z) arrays, in
+/// the order of `snaps`; None when a snapshot's step is missing.
+fn snapshot_arrays(
+    case: &Case,
+    sol: &InverseSolution,
+    snaps: &[&jbearing_solvers::inverse::FieldSnapshot],
+    (nt, nz): (usize, usize),
+) -> Option<[Array3<f64>; 3]> {
+    let k = snaps.len();
+    let mut pressure = Array3::zeros((k, nt, nz));
+    let mut content = Array3::zeros((k, nt, nz));
+    // h(θ) = c (1 − ε_x cos θ − ε_y sin θ) (docs/conventions.md §1; reynolds/film.rs), the rigid journal's
+    // gap at the snapshot's ε, the same along z.
+    let mut thickness = Array3::zeros((k, nt, nz));
+    for (i, s) in snaps.iter().enumerate() {
+        let eps = sol.steps.get(s.step_index)?.eccentricity_ratio;
+        for it in 0..nt {
+            let th = std::f64::consts::TAU * it as f64 / nt as f64;
+            let h = case.radial_clearance * (1.0 - eps[0] * th.cos() - eps[1] * th.sin());
+            thickness.slice_mut(ndarray::s![i, it, ..]).fill(h);
+        }
+        pressure
+            .index_axis_mut(ndarray::Axis(0), i)
+            .assign(&s.fields.pressure);
+        content
+            .index_axis_mut(ndarray::Axis(0), i)
+            .assign(&s.fields.film_fraction);
+    }
+    Some([pressure, content, thickness])
 }
 
 /// Film temperature and viscosity at each snapshot, as the Reynolds solver evaluates them per

@@ -1827,61 +1827,75 @@ pub const PLAUSIBLE_SLIDING_SPEED: f64 = 200.0;
 pub const PLAUSIBLE_BULK_MODULUS: (f64, f64) = (1e8, 1e11);
 
 /// Warnings for values of a valid case far outside journal-bearing practice (ranges at
-/// [`PLAUSIBLE_CLEARANCE_RATIO`]).
+/// [`PLAUSIBLE_CLEARANCE_RATIO`]): the bearing and lubricant first, then the operation.
 fn plausibility_warnings(case: &Case, ctx: &Ctx<'_>) -> Vec<CaseWarning> {
-    let mut out = Vec::new();
-    let mut warn = |key: &str, message: String| {
-        out.push(CaseWarning {
+    let mut found = implausible_properties(case);
+    found.extend(implausible_operation(case));
+    found
+        .into_iter()
+        .map(|(key, message)| CaseWarning {
             file: ctx.file.clone(),
             line: ctx.locator.line_of(key),
             key: key.to_string(),
             kind: WarningKind::Implausible,
             message,
         })
-    };
+        .collect()
+}
+
+/// The bearing's clearance ratio and width ratio, the lubricant's viscosity and bulk modulus
+/// outside their plausible ranges: (key, message).
+fn implausible_properties(case: &Case) -> Vec<(&'static str, String)> {
+    let mut out = Vec::new();
     let outside = |v: f64, (lo, hi): (f64, f64)| v < lo || v > hi;
     let ratio = case.radial_clearance / case.radius;
     if outside(ratio, PLAUSIBLE_CLEARANCE_RATIO) {
-        warn(
+        out.push((
             "bearing.radial_clearance_m",
             format!(
                 "clearance ratio c/R = {ratio:.3e} is far outside journal-bearing practice \
                  (5e-4 … 3e-3, clearance joints of mechanisms 2e-2; warned outside {:e} … {:e}): check the value and its unit (m)",
                 PLAUSIBLE_CLEARANCE_RATIO.0, PLAUSIBLE_CLEARANCE_RATIO.1
             ),
-        );
+        ));
     }
     let ld = case.length / (2.0 * case.radius);
     if outside(ld, PLAUSIBLE_WIDTH_RATIO) {
-        warn(
+        out.push((
             "bearing.length_m",
             format!(
                 "width ratio L/D = {ld:.3} is far outside journal-bearing practice (0.2 … 1.5; \
                  warned outside {} … {}): check the value and its unit (m)",
                 PLAUSIBLE_WIDTH_RATIO.0, PLAUSIBLE_WIDTH_RATIO.1
             ),
-        );
+        ));
     }
     if outside(case.viscosity, PLAUSIBLE_VISCOSITY) {
-        warn(
+        out.push((
             "lubricant.viscosity_pa_s",
             format!(
                 "viscosity {:.3e} Pa·s is far outside lubricating oils (2e-3 … 1 Pa·s; warned \
                  outside {:e} … {} Pa·s): check the unit (Pa·s, not cP or mPa·s)",
                 case.viscosity, PLAUSIBLE_VISCOSITY.0, PLAUSIBLE_VISCOSITY.1
             ),
-        );
+        ));
     }
     if outside(case.bulk_modulus, PLAUSIBLE_BULK_MODULUS) {
-        warn(
+        out.push((
             "lubricant.bulk_modulus_pa",
             format!(
                 "bulk modulus {:.3e} Pa is far outside mineral oils (1.2e9 … 2e9 Pa; warned \
                  outside {:e} … {:e} Pa)",
                 case.bulk_modulus, PLAUSIBLE_BULK_MODULUS.0, PLAUSIBLE_BULK_MODULUS.1
             ),
-        );
+        ));
     }
+    out
+}
+
+/// A peak specific load or a sliding speed above its plausible limit: (key, message).
+fn implausible_operation(case: &Case) -> Vec<(&'static str, String)> {
+    let mut out = Vec::new();
     let peak = case
         .load_forces
         .iter()
@@ -1889,7 +1903,7 @@ fn plausibility_warnings(case: &Case, ctx: &Ctx<'_>) -> Vec<CaseWarning> {
         .fold(0.0, f64::max);
     let specific = peak / (2.0 * case.radius * case.length);
     if specific > PLAUSIBLE_SPECIFIC_LOAD {
-        warn(
+        out.push((
             "load",
             format!(
                 "peak specific load max|W| / (2 R L) = {:.1} MPa is above {} MPa, far beyond \
@@ -1897,7 +1911,7 @@ fn plausibility_warnings(case: &Case, ctx: &Ctx<'_>) -> Vec<CaseWarning> {
                 specific / 1e6,
                 PLAUSIBLE_SPECIFIC_LOAD / 1e6
             ),
-        );
+        ));
     }
     let cycle = case.cycle_deg;
     let fastest = (0..=72)
@@ -1908,14 +1922,14 @@ fn plausibility_warnings(case: &Case, ctx: &Ctx<'_>) -> Vec<CaseWarning> {
         .fold(0.0, f64::max);
     let sliding = fastest * case.radius;
     if sliding > PLAUSIBLE_SLIDING_SPEED {
-        warn(
+        out.push((
             "operation",
             format!(
                 "sliding speed |ω_j − ω_b| R = {sliding:.0} m/s is above {} m/s: check the \
                  speeds (rpm) and the radius (m)",
                 PLAUSIBLE_SLIDING_SPEED
             ),
-        );
+        ));
     }
     out
 }
