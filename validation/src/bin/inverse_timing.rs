@@ -154,76 +154,113 @@ fn run(
     })
 }
 
-fn main() -> Result<()> {
-    let mut args: Vec<String> = std::env::args().skip(1).collect();
-    let write_docs = args.iter().any(|a| a == "--write-docs");
-    args.retain(|a| a != "--write-docs");
-    let mut rest = args.iter();
-    while let Some(a) = rest.next() {
-        match a.as_str() {
-            "--quick" | "--default" | "--grids" => {}
-            "--repeat" | "--jacobian" | "--linear" => {
-                rest.next();
+/// The command line: which rows, how often, with which Jacobian and linear solver, and
+/// whether to write the docs block (`args` is the command line without `--write-docs`).
+struct Options {
+    args: Vec<String>,
+    write_docs: bool,
+    quick: bool,
+    default_only: bool,
+    grids_only: bool,
+    linear: LinearSolver,
+    repeat: usize,
+    jacobian: JacobianMethod,
+}
+
+impl Options {
+    /// The options of this process's command line; an unknown argument or a bad value is an
+    /// error naming what was expected.
+    fn parse() -> Result<Self> {
+        let mut args: Vec<String> = std::env::args().skip(1).collect();
+        let write_docs = args.iter().any(|a| a == "--write-docs");
+        args.retain(|a| a != "--write-docs");
+        let mut rest = args.iter();
+        while let Some(a) = rest.next() {
+            match a.as_str() {
+                "--quick" | "--default" | "--grids" => {}
+                "--repeat" | "--jacobian" | "--linear" => {
+                    rest.next();
+                }
+                other => anyhow::bail!(
+                    "unknown argument {other:?} (expected --quick, --default, --grids, --repeat N, \
+                     --jacobian exact|broyden|differences, --linear adi|multigrid|lu, --write-docs)"
+                ),
             }
-            other => anyhow::bail!(
-                "unknown argument {other:?} (expected --quick, --default, --grids, --repeat N, \
-                 --jacobian exact|broyden|differences, --linear adi|multigrid|lu, --write-docs)"
-            ),
+        }
+        let quick = args.iter().any(|a| a == "--quick");
+        let default_only = args.iter().any(|a| a == "--default");
+        let grids_only = args.iter().any(|a| a == "--grids");
+        let linear = match args.iter().position(|a| a == "--linear") {
+            Some(i) => match args.get(i + 1).map(String::as_str) {
+                Some("adi") => LinearSolver::AdiKrylov,
+                Some("multigrid") => LinearSolver::MultigridKrylov,
+                Some("lu") => LinearSolver::SparseLu,
+                other => anyhow::bail!("--linear {other:?}: expected adi, multigrid or lu"),
+            },
+            None => LinearSolver::default(),
+        };
+        let repeat: usize = match args.iter().position(|a| a == "--repeat") {
+            Some(i) => args
+                .get(i + 1)
+                .and_then(|v| v.parse().ok())
+                .filter(|&n: &usize| n >= 1)
+                .context("--repeat needs a positive count")?,
+            None => 1,
+        };
+        let jacobian = match args.iter().position(|a| a == "--jacobian") {
+            Some(i) => match args.get(i + 1).map(String::as_str) {
+                Some("exact") => JacobianMethod::Exact,
+                Some("broyden") => JacobianMethod::Broyden,
+                Some("differences") => JacobianMethod::FiniteDifference,
+                other => {
+                    anyhow::bail!("--jacobian {other:?}: expected exact, broyden or differences")
+                }
+            },
+            None => JacobianMethod::default(),
+        };
+        Ok(Self {
+            args,
+            write_docs,
+            quick,
+            default_only,
+            grids_only,
+            linear,
+            repeat,
+            jacobian,
+        })
+    }
+
+    /// The rows to measure: (n_θ, n_z, step in degrees).
+    fn plan(&self) -> Vec<(usize, usize, f64)> {
+        if self.quick {
+            vec![(60, 15, 2.0), (60, 15, 1.0)]
+        } else if self.default_only {
+            vec![(120, 31, 1.0)]
+        } else if self.grids_only {
+            vec![(60, 15, 1.0), (120, 31, 1.0), (240, 61, 1.0)]
+        } else {
+            vec![
+                (120, 31, 1.0),
+                (60, 15, 1.0),
+                (240, 61, 1.0),
+                (120, 31, 2.0),
+                (120, 31, 0.5),
+            ]
         }
     }
-    let quick = args.iter().any(|a| a == "--quick");
-    let default_only = args.iter().any(|a| a == "--default");
-    let grids_only = args.iter().any(|a| a == "--grids");
-    let linear = match args.iter().position(|a| a == "--linear") {
-        Some(i) => match args.get(i + 1).map(String::as_str) {
-            Some("adi") => LinearSolver::AdiKrylov,
-            Some("multigrid") => LinearSolver::MultigridKrylov,
-            Some("lu") => LinearSolver::SparseLu,
-            other => anyhow::bail!("--linear {other:?}: expected adi, multigrid or lu"),
-        },
-        None => LinearSolver::default(),
-    };
-    let repeat: usize = match args.iter().position(|a| a == "--repeat") {
-        Some(i) => args
-            .get(i + 1)
-            .and_then(|v| v.parse().ok())
-            .filter(|&n: &usize| n >= 1)
-            .context("--repeat needs a positive count")?,
-        None => 1,
-    };
-    let jacobian = match args.iter().position(|a| a == "--jacobian") {
-        Some(i) => match args.get(i + 1).map(String::as_str) {
-            Some("exact") => JacobianMethod::Exact,
-            Some("broyden") => JacobianMethod::Broyden,
-            Some("differences") => JacobianMethod::FiniteDifference,
-            other => anyhow::bail!("--jacobian {other:?}: expected exact, broyden or differences"),
-        },
-        None => JacobianMethod::default(),
-    };
-    let plan: Vec<(usize, usize, f64)> = if quick {
-        vec![(60, 15, 2.0), (60, 15, 1.0)]
-    } else if default_only {
-        vec![(120, 31, 1.0)]
-    } else if grids_only {
-        vec![(60, 15, 1.0), (120, 31, 1.0), (240, 61, 1.0)]
-    } else {
-        vec![
-            (120, 31, 1.0),
-            (60, 15, 1.0),
-            (240, 61, 1.0),
-            (120, 31, 2.0),
-            (120, 31, 0.5),
-        ]
-    };
+}
+
+fn main() -> Result<()> {
+    let opts = Options::parse()?;
     report!(
         "Machine: {}. Measured: {}. Thread CPU time, one core, release build; {:?} Jacobian; \
          {:?} linear solver{}.\n",
         machine(),
         jiff::Timestamp::now().strftime("%Y-%m-%d %H:%M UTC"),
-        jacobian,
-        linear,
-        if repeat > 1 {
-            format!("; each row the median of {repeat} runs")
+        opts.jacobian,
+        opts.linear,
+        if opts.repeat > 1 {
+            format!("; each row the median of {} runs", opts.repeat)
         } else {
             String::new()
         }
@@ -232,47 +269,51 @@ fn main() -> Result<()> {
         "| grid | step | run-in + cycle (s) | per cycle (s) | film / Newton share | film steps per time step | ms per film step | Krylov iterations per film step | stalled / split steps | cycle min h_min (µm) | mean power (W) |"
     );
     report!("|---|---|---|---|---|---|---|---|---|---|---|");
-    for (nt, nz, step) in plan {
-        let mut runs = (0..repeat)
-            .map(|_| run(nt, nz, step, jacobian, linear))
+    for (nt, nz, step) in opts.plan() {
+        let mut runs = (0..opts.repeat)
+            .map(|_| run(nt, nz, step, opts.jacobian, opts.linear))
             .collect::<Result<Vec<_>>>()?;
         runs.sort_by(|a, b| a.total.total_cmp(&b.total));
-        let r = runs.swap_remove(repeat / 2);
-        let info = &r.solution.info;
-        let steps = info.run_in_steps + info.steps_per_cycle;
-        let per_cycle = r.total * info.steps_per_cycle as f64 / steps as f64;
-        let evals = info.film_evaluations as f64;
-        report!(
-            "| {} × {} | {}° | {:.1} | {:.1} | {:.1} % / {:.1} % | {:.2} | {:.2} | {:.1} | {} / {} | {:.3} | {:.2} |",
-            r.grid.0,
-            r.grid.1,
-            r.step_deg,
-            r.total,
-            per_cycle,
-            100.0 * r.film / r.total,
-            100.0 * (r.total - r.film) / r.total,
-            evals / steps as f64,
-            1e3 * r.film / evals,
-            r.krylov as f64 / evals,
-            info.stalled_steps,
-            info.split_steps,
-            1e6 * r.solution.summary.min_film_thickness,
-            r.solution.summary.mean_power_loss,
-        );
+        report_row(&runs.swap_remove(opts.repeat / 2));
     }
     report!(
         "\n\"per cycle\" scales the run-in + cycle time by (cycle steps) / (run-in + cycle steps)."
     );
-    if write_docs {
+    if opts.write_docs {
         // The block is named by the command that measured it, --write-docs left out.
         let mut command =
             "cargo run --release -p jbearing-validation --bin inverse_timing".to_string();
-        if !args.is_empty() {
-            command = format!("{command} -- {}", args.join(" "));
+        if !opts.args.is_empty() {
+            command = format!("{command} -- {}", opts.args.join(" "));
         }
         let page = docs_page("performance.md");
         write_generated_block(&page, &command, &take_report())?;
         eprintln!("wrote the block of {command:?} in {}", page.display());
     }
     Ok(())
+}
+
+/// One row of the table: a run's grid, step, times, shares, film-step statistics and answer.
+fn report_row(r: &Row) {
+    let info = &r.solution.info;
+    let steps = info.run_in_steps + info.steps_per_cycle;
+    let per_cycle = r.total * info.steps_per_cycle as f64 / steps as f64;
+    let evals = info.film_evaluations as f64;
+    report!(
+        "| {} × {} | {}° | {:.1} | {:.1} | {:.1} % / {:.1} % | {:.2} | {:.2} | {:.1} | {} / {} | {:.3} | {:.2} |",
+        r.grid.0,
+        r.grid.1,
+        r.step_deg,
+        r.total,
+        per_cycle,
+        100.0 * r.film / r.total,
+        100.0 * (r.total - r.film) / r.total,
+        evals / steps as f64,
+        1e3 * r.film / evals,
+        r.krylov as f64 / evals,
+        info.stalled_steps,
+        info.split_steps,
+        1e6 * r.solution.summary.min_film_thickness,
+        r.solution.summary.mean_power_loss,
+    );
 }
