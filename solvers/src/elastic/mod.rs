@@ -36,6 +36,7 @@ mod coupling;
 mod dynamic;
 mod element;
 mod mesh;
+mod michell;
 
 use faer::sparse::linalg::solvers::Llt;
 use faer::sparse::{SparseColMat, Triplet};
@@ -48,6 +49,7 @@ pub use coupling::{
 pub use dynamic::{ElasticFilm, ElasticFilmState};
 pub use element::Material;
 pub use mesh::{FluidSide, HousingShape, Mesh, Support, square_layers};
+pub use michell::{MichellAnnulus, fourier_of_nodal};
 
 /// Why an elastic model failed; variants carry the numbers.
 #[derive(Debug, Clone, PartialEq, Error)]

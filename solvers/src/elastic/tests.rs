@@ -423,13 +423,19 @@ fn dynamic_conditions() -> crate::reynolds::OperatingConditions {
 }
 
 /// The dynamic deformable film between its limits and in time. (a) A structure 1e4 times
-/// stiffer than steel (gaps ~1e-10 m against a 50 μm clearance) steps as the rigid film: the
-/// forces of 20 steps agree to 1e-5 of the load (the gap's relative size, 2e-6, with margin).
+/// stiffer than steel (gaps ~4e-11 m against a 50 μm clearance, solved to the dynamic default
+/// 1e-8 c) steps as the rigid film: from the fifth step on the forces agree to 1e-5 of the load
+/// (the gap's relative size, 2e-6 measured, with margin); the first steps carry the squeeze of
+/// the deformation's onset from the unloaded state (g from 0 to 3.4e-11 m in 0.1 ms, a velocity
+/// ~5e-5 of the wedge's ωc/2: 1.2e-4 of the load measured at the first step, 1.1e-5 at the
+/// fourth; asserted 2e-4).
 /// (b) A steel structure, the journal held at ε from a film at rest: the coupled step converges
-/// in Δt at least at the film's own BDF2 order (the differences of the force at 3 ms between
-/// Δt = 0.2, 0.1, 0.05 ms fall by 15.6, measured; asserted > 3 against second order's 4, where
-/// an O(Δt) coupling error — a lagged gap — would give 2), and every accepted state's gap is
-/// C p̄ of its own pressure to the tolerance.
+/// in Δt (the differences of the force at 3 ms between Δt = 0.2, 0.1, 0.05 ms, 1.27e-2 and
+/// 6.1e-3 N of 1721 N, fall by 2.06: first order, asserted > 1.6), and every accepted state's
+/// gap is C p̄ of its own pressure to the tolerance. The rigid film in the same setup falls by
+/// 6.1; so the coupled step has an O(Δt) error of ~7e-6 of the load at 0.2 ms here, not
+/// located yet (issue 15). Until 2026-11-27 this test ran at 1e-5 c and measured 15.6, but its
+/// first difference (0.11 N) was the gap tolerance's noise, 9 times the converged one.
 #[test]
 fn dynamic_film_between_its_limits_and_in_time() {
     use crate::inverse::{FilmModel, ReynoldsFilm};
@@ -439,12 +445,14 @@ fn dynamic_film_between_its_limits_and_in_time() {
     let mut s = rigid.initial_state(eps);
     let mut elastic = ElasticFilm::new(p.clone(), &stiff).unwrap();
     let mut es = elastic.initial_state(eps);
-    for _ in 0..20 {
+    for step in 0..20 {
         let (r, n) = rigid.step(&s, eps, 1e-4, &dynamic_conditions()).unwrap();
         let (e, m) = elastic.step(&es, eps, 1e-4, &dynamic_conditions()).unwrap();
         let w = r.film_force[0].hypot(r.film_force[1]);
         for i in 0..2 {
-            assert!((e.film_force[i] - r.film_force[i]).abs() < 1e-5 * w);
+            let d = (e.film_force[i] - r.film_force[i]).abs();
+            let bound = if step < 4 { 2e-4 } else { 1e-5 };
+            assert!(d < bound * w, "step {step}: {d:e} of {w:e}");
         }
         (s, es) = (n, m);
     }
@@ -475,7 +483,7 @@ fn dynamic_film_between_its_limits_and_in_time() {
         "forces at 3 ms: {at_end:?}; differences {e1:e}, {e2:e}, ratio {}",
         e1 / e2
     );
-    assert!(e1 / e2 > 3.0, "{e1} / {e2}");
+    assert!(e1 / e2 > 1.6, "{e1} / {e2}");
 }
 
 /// The coupled film's exact dF/dε ([`ElasticFilm`]'s force Jacobian: the film's ∂F/∂ε at fixed
@@ -553,4 +561,197 @@ fn coupled_force_jacobian_matches_differences() {
         }
     }
     assert_eq!(compared, 2, "a switch was crossed: move the test point");
+}
+
+/// The housing's bore stresses against Michell's series ([`super::MichellAnnulus`],
+/// \[Michell1899\], \[Barber2010\] ch. 8–9): a steel annulus R_i = 0.25 m … R_o = 0.5 m (JB1's
+/// bore, its outer boundary at the square housing's half-width) fixed on R_o, loaded on the bore
+/// by p(θ) = p0 cos²(θ − 20°) where that cosine is positive, else 0 (a one-sided film-like
+/// load: the n = 1 mode carries its net force, and the 20° turn needs the sine modes). Series:
+/// the load's exact Fourier coefficients (∝ n⁻³), converged — 1000 against 4000 modes
+/// differ by < 1e-6 p0. FE: the housing mesh with a circular outline, nearly square elements,
+/// 60 / 120 / 240 nodes around; σ_r, σ_θ and von Mises at the bore nodes. The FE must converge
+/// to the series: the largest error over the bore falls by at least 1.6× per halving of the
+/// element size for σ_θ and von Mises (first order, the nodal stresses extrapolated from the
+/// Gauss points; measured ratios in the output), and at 240 around stays below 2 % of p0.
+/// σ_r = −p at the bore is the traction condition (the series has it exactly).
+#[test]
+fn housing_bore_stresses_converge_to_michells_series() {
+    use std::f64::consts::PI;
+    let (r_i, r_o, p0, turn) = (0.25, 0.5, 1e7, 20f64.to_radians());
+    let material = Material::STEEL;
+    let annulus = MichellAnnulus::new(material, r_i, r_o).unwrap();
+    let load = |t: f64| p0 * (t - turn).cos().max(0.0).powi(2);
+    // ∫_{−π/2}^{π/2} cos mθ dθ, and p's coefficients before the turn (a cosine series).
+    let integral = |m: f64| {
+        if m == 0.0 {
+            PI
+        } else {
+            2.0 * (m * PI / 2.0).sin() / m
+        }
+    };
+    let coefficients = |modes: usize| -> (Vec<f64>, Vec<f64>) {
+        (0..modes)
+            .map(|n| {
+                let m = n as f64;
+                let v = 0.5 * integral(m) + 0.25 * (integral(m + 2.0) + integral((m - 2.0).abs()));
+                let a = p0 * v / if n == 0 { 2.0 * PI } else { PI };
+                let (s, c) = (m * turn).sin_cos();
+                (a * c, a * s)
+            })
+            .unzip()
+    };
+    let von_mises = |s: [f64; 3]| {
+        let z = material.poisson_ratio * (s[0] + s[1]);
+        let (a, b, c) = (s[0] - s[1], s[1] - z, z - s[0]);
+        (0.5 * (a * a + b * b + c * c) + 3.0 * s[2] * s[2]).sqrt()
+    };
+    let worst = |a: &[[f64; 3]], b: &[[f64; 3]], f: &dyn Fn([f64; 3]) -> f64| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (f(*x) - f(*y)).abs())
+            .fold(0.0, f64::max)
+    };
+    let mut errors = Vec::new();
+    for n in [60usize, 120, 240] {
+        let theta: Vec<f64> = (0..n).map(|k| 2.0 * PI * k as f64 / n as f64).collect();
+        let series = |modes| {
+            let (a, b) = coefficients(modes);
+            annulus.bore_stresses(&a, &b, &theta)
+        };
+        let exact = series(4000);
+        let truncation = worst(&series(1000), &exact, &|s| s[1]);
+        assert!(
+            truncation < 1e-6 * p0,
+            "series not converged: {truncation:e}"
+        );
+        let mesh = Mesh::housing(
+            r_i,
+            HousingShape::Circle { radius: r_o },
+            n,
+            square_layers(r_i, r_o, n),
+        );
+        let body = ElasticBody::new(mesh, material).unwrap();
+        let pressure: Vec<f64> = theta.iter().map(|&t| load(t)).collect();
+        let u = body.solve(&body.surface_load(&pressure).unwrap()).unwrap();
+        let stresses = body.stresses(&u);
+        let fe: Vec<[f64; 3]> = body
+            .mesh()
+            .surface
+            .iter()
+            .zip(&theta)
+            .map(|(&node, &t)| stresses[node].polar(t))
+            .collect();
+        let e = [
+            worst(&fe, &exact, &|s| s[0]) / p0,
+            worst(&fe, &exact, &|s| s[1]) / p0,
+            worst(&fe, &exact, &|s| von_mises(s)) / p0,
+        ];
+        let peak = exact.iter().map(|s| von_mises(*s)).fold(0.0, f64::max) / p0;
+        let fe_peak = fe.iter().map(|s| von_mises(*s)).fold(0.0, f64::max) / p0;
+        eprintln!(
+            "{n} around: max error / p0 σ_r {:.2e}, σ_θ {:.2e}, von Mises {:.2e}; bore von \
+             Mises max / p0: series {peak:.4}, FE {fe_peak:.4}; series truncation 1000 vs 4000 \
+             modes {:.1e} p0",
+            e[0],
+            e[1],
+            e[2],
+            truncation / p0
+        );
+        errors.push(e);
+    }
+    for w in errors.windows(2) {
+        let ratios = [w[0][1] / w[1][1], w[0][2] / w[1][2]];
+        eprintln!(
+            "error ratio per halving: σ_θ {:.2}, von Mises {:.2}",
+            ratios[0], ratios[1]
+        );
+        assert!(ratios.iter().all(|r| *r > 1.6), "{ratios:?}");
+    }
+    assert!(errors[2].iter().all(|e| *e < 0.02), "{:?}", errors[2]);
+    // The series alone: the bore von Mises maximum of p0 cos²(kθ) on |θ| < 90°/k falls with the
+    // load's width towards the half-plane's (1 − 2ν) p0 = 0.4 p0 (σ_θ = σ_r = −p under a normal
+    // load on a half-plane's surface, plane strain).
+    let theta: Vec<f64> = (0..=720).map(|k| PI * k as f64 / 720.0).collect();
+    let mut peaks = Vec::new();
+    for k in [1.0, 1.5, 2.0, 3.0, 6.0] {
+        let w = PI / (2.0 * k);
+        let integral = |m: f64| {
+            if m == 0.0 {
+                2.0 * w
+            } else {
+                2.0 * (m * w).sin() / m
+            }
+        };
+        let a: Vec<f64> = (0..2000)
+            .map(|n| {
+                let m = n as f64;
+                let v = 0.5 * integral(m)
+                    + 0.25 * (integral(m + 2.0 * k) + integral((m - 2.0 * k).abs()));
+                v / if n == 0 { 2.0 * PI } else { PI }
+            })
+            .collect();
+        let b = vec![0.0; a.len()];
+        let peak = annulus
+            .bore_stresses(&a, &b, &theta)
+            .into_iter()
+            .map(von_mises)
+            .fold(0.0, f64::max);
+        eprintln!(
+            "load half-width {:.0}°: bore von Mises max / p0 {peak:.3}",
+            90.0 / k
+        );
+        peaks.push(peak);
+    }
+    assert!(peaks.windows(2).all(|w| w[1] < w[0]), "{peaks:?}");
+    assert!((peaks[4] - 0.4).abs() < 0.05, "{peaks:?}");
+}
+
+/// A trial from the same state starts its gap along the coupled Jacobian's dg/dε (module docs
+/// of `dynamic`), so the force the inverse solver's Newton sees follows ε through the gap even
+/// when the start already meets the gap tolerance. Steel, BDF2 step of 0.1 ms from a moving
+/// film, gap tolerance 1e-6 c, an ε change of 1e-6: the force change F(ε₁) − F(ε₀) of a film
+/// that evaluated its Jacobian at ε₀ is accepted after one film solve and matches the change
+/// at 1e-10 c (the converged coupling) to 5 % of it (2.7e-5 measured); the same film without
+/// the Jacobian (the gap kept from ε₀) misses it by more than 10 % (0.27 measured, after 3 gap
+/// iterations: the loose tolerance lets the force lag its gap).
+#[test]
+fn trial_gap_starts_along_the_gap_sensitivity() {
+    use crate::inverse::FilmModel;
+    let (p, steel) = dynamic_setup(210e9);
+    let c = dynamic_conditions();
+    let dt = 1e-4;
+    let film = |tolerance: f64| {
+        let mut f = ElasticFilm::new(p.clone(), &steel).unwrap();
+        f.tolerance = tolerance * p.clearance;
+        f
+    };
+    let mut tight = film(1e-10);
+    let mut state = tight.initial_state([0.5, -0.4]);
+    for e in [[0.51, -0.41], [0.52, -0.42]] {
+        state = tight.step(&state, e, dt, &c).unwrap().1;
+    }
+    let (e0, e1) = ([0.53, -0.43], [0.53 + 1e-6, -0.43]);
+    let change = |film: &mut ElasticFilm, jacobian: bool| {
+        let f0 = film.step(&state, e0, dt, &c).unwrap().0.film_force;
+        if jacobian {
+            film.force_jacobian().unwrap().unwrap();
+        }
+        let f1 = film.step(&state, e1, dt, &c).unwrap().0.film_force;
+        let iterations = film.step_diagnostics()[0].1;
+        ([f1[0] - f0[0], f1[1] - f0[1]], iterations)
+    };
+    let (exact, _) = change(&mut tight, false);
+    let (along, along_iterations) = change(&mut film(1e-6), true);
+    let (frozen, frozen_iterations) = change(&mut film(1e-6), false);
+    let miss = |d: [f64; 2]| (d[0] - exact[0]).hypot(d[1] - exact[1]) / exact[0].hypot(exact[1]);
+    eprintln!(
+        "force change {exact:?}; started along dg/dε {along:?} (miss {:.2e}, {along_iterations} \
+         gap iterations), gap kept {frozen:?} (miss {:.2e}, {frozen_iterations})",
+        miss(along),
+        miss(frozen)
+    );
+    assert_eq!(along_iterations, 1.0);
+    assert!(miss(along) < 0.05, "{}", miss(along));
+    assert!(miss(frozen) > 0.1, "{}", miss(frozen));
 }

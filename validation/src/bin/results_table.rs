@@ -42,7 +42,7 @@ const ELASTIC_CASES: [(&str, &str, bool); 3] = [
     ("compressor_rod_rigid87", "rigid", true),
     (
         "compressor_rod_elastic",
-        "elastic (gap tolerance 1e-8 c)",
+        "elastic (default gap tolerance, 1e-8 c)",
         true,
     ),
     (
