@@ -16,8 +16,8 @@ fn gap_warned(case: &Case) -> bool {
 
 /// The compressor rod's elastic case leaves the key out: its dynamic film runs 1e-8 c (what
 /// its validated row ran, docs/validation.md), the steady solve keeps 1e-5 c, no warning. The
-/// gap 1e-4 c case sets both and is warned about; JB1 (steady, no rigorous method) sets 1e-5 c
-/// and is not.
+/// gap 1e-4 c case sets both and is warned about; JB1 (steady, no rigorous method) leaves it
+/// out too and runs the steady 1e-5 c.
 #[test]
 fn dynamic_gap_tolerance_defaults_to_the_validated_value() {
     let rod = repository_case("compressor_rod_elastic.toml");
