@@ -7,11 +7,14 @@
 
 use std::f64::consts::PI;
 
-use jbearing_solvers::elastic::{ElasticBearing, ElasticParams, solve_steady_load};
+use jbearing_solvers::elastic::{
+    ElasticBearing, ElasticParams, ElasticSolution, solve_steady_load,
+};
 use jbearing_solvers::reynolds::{
     FilmSolution, GridParams, OperatingConditions, ReynoldsParams, ReynoldsSolver, SupplyModel,
 };
 use jbearing_solvers::viscosity::{Temperature, ViscosityModel, Vogel};
+use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
@@ -70,6 +73,29 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .unwrap_or_else(|| "docs/benasciutti_jb1_elastic.png".into());
     plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
         .map_err(|_| "font registration failed")?;
+    let jb1 = solve_jb1()?;
+    let root = BitMapBackend::new(&out, (900, 1200)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let panels = root.split_evenly((3, 1));
+    draw_pressure(&panels[0], &jb1)?;
+    draw_meatus(&panels[1], &jb1)?;
+    draw_stresses(&panels[2], &jb1)?;
+    root.present()?;
+    println!("wrote {out}");
+    Ok(())
+}
+
+/// JB1 under the paper's load at 65 rpm, rigid and with elastic shaft and housing.
+struct Jb1 {
+    rigid: FilmSolution,
+    rigid_eccentricity: [f64; 2],
+    elastic: ElasticSolution,
+    elastic_eccentricity: [f64; 2],
+    bearing: ElasticBearing,
+}
+
+/// The two steady solves: the rigid film, then the film coupled with the deformation.
+fn solve_jb1() -> Result<Jb1, Box<dyn std::error::Error>> {
     let conditions = OperatingConditions {
         journal_speed: 65.0 * 2.0 * PI / 60.0,
         bearing_speed: 0.0,
@@ -79,35 +105,42 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let load = [0.0, -3.6e6 / 0.3 * solver.params().length];
     let (rigid, rigid_info) = solver.solve_steady_load(load, &conditions)?;
     let bearing = ElasticBearing::new(R, ElasticParams::steel(R))?;
-    let (sol, info) = solve_steady_load(&mut solver, &bearing, load, &conditions)?;
-    let angles = bearing.surface_angles();
-    let [erx, ery] = rigid_info.eccentricity_ratio;
-    let [edx, edy] = info.steady.eccentricity_ratio;
-    let h_rigid = sorted(
+    let (elastic, info) = solve_steady_load(&mut solver, &bearing, load, &conditions)?;
+    Ok(Jb1 {
+        rigid,
+        rigid_eccentricity: rigid_info.eccentricity_ratio,
+        elastic,
+        elastic_eccentricity: info.steady.eccentricity_ratio,
+        bearing,
+    })
+}
+
+/// (angle from the load line, meatus mm) at the surface nodes, sorted by angle: h = c (1 − ε_x
+/// cos θ − ε_y sin θ) of the rigid bearing, or of the elastic one plus its gap change.
+fn meatus(jb1: &Jb1, elastic: bool) -> Vec<(f64, f64)> {
+    let angles = jb1.bearing.surface_angles();
+    let h = |t: f64, [ex, ey]: [f64; 2]| C * (1.0 - ex * t.cos() - ey * t.sin());
+    let curve = if elastic {
         angles
             .iter()
-            .map(|&t| {
-                (
-                    from_load(t),
-                    C * (1.0 - erx * t.cos() - ery * t.sin()) * 1e3,
-                )
-            })
-            .collect(),
-    );
-    let h_def = sorted(
+            .zip(&jb1.elastic.gap_change)
+            .map(|(&t, g)| (from_load(t), (h(t, jb1.elastic_eccentricity) + g) * 1e3))
+            .collect()
+    } else {
         angles
             .iter()
-            .zip(&sol.gap_change)
-            .map(|(&t, g)| {
-                (
-                    from_load(t),
-                    (C * (1.0 - edx * t.cos() - edy * t.sin()) + g) * 1e3,
-                )
-            })
-            .collect(),
-    );
-    let stresses = bearing.housing.stresses(&sol.housing_displacement);
-    let mesh = bearing.housing.mesh();
+            .map(|&t| (from_load(t), h(t, jb1.rigid_eccentricity) * 1e3))
+            .collect()
+    };
+    sorted(curve)
+}
+
+/// σ_r, σ_θ, σ_z and von Mises (MPa) along the housing bore against the angle from the load
+/// line, each sorted by angle.
+fn bore_stresses(jb1: &Jb1) -> [Vec<(f64, f64)>; 4] {
+    let housing = &jb1.bearing.housing;
+    let stresses = housing.stresses(&jb1.elastic.housing_displacement);
+    let mesh = housing.mesh();
     let mut comps: [Vec<(f64, f64)>; 4] = Default::default();
     for &node in &mesh.surface {
         let [x, y] = mesh.nodes[node];
@@ -121,14 +154,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             c.push((a, v / 1e6));
         }
     }
-    let comps = comps.map(sorted);
+    comps.map(sorted)
+}
 
-    let root = BitMapBackend::new(&out, (900, 1200)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let panels = root.split_evenly((3, 1));
+type Panel<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
+
+/// (a) The mid-plane film pressure, rigid and elastic (the paper's Fig. 6a).
+fn draw_pressure(panel: &Panel<'_>, jb1: &Jb1) -> Result<(), Box<dyn std::error::Error>> {
     let font = ("sans-serif", 16);
-    // (a) pressure.
-    let mut ch = ChartBuilder::on(&panels[0])
+    let mut ch = ChartBuilder::on(panel)
         .caption(
             "JB1 film pressure (mid-plane): rigid vs elastic shaft and housing",
             font,
@@ -143,18 +177,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .label_style(font)
         .draw()?;
     ch.draw_series(LineSeries::new(
-        pressure_curve(&rigid),
+        pressure_curve(&jb1.rigid),
         BLUE.stroke_width(2),
     ))?
-    .label(format!("rigid, p_max {:.1} MPa", rigid.max_pressure / 1e6))
+    .label(format!(
+        "rigid, p_max {:.1} MPa",
+        jb1.rigid.max_pressure / 1e6
+    ))
     .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
     ch.draw_series(LineSeries::new(
-        pressure_curve(&sol.film),
+        pressure_curve(&jb1.elastic.film),
         RED.stroke_width(2),
     ))?
     .label(format!(
         "elastic, p_max {:.1} MPa (paper 83 -> 43 MPa)",
-        sol.film.max_pressure / 1e6
+        jb1.elastic.film.max_pressure / 1e6
     ))
     .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(2)));
     ch.configure_series_labels()
@@ -163,8 +200,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .background_style(WHITE)
         .label_font(font)
         .draw()?;
-    // (b) meatus.
-    let mut ch = ChartBuilder::on(&panels[1])
+    Ok(())
+}
+
+/// (b) The meatus h(θ), rigid and elastic (the paper's Fig. 6b).
+fn draw_meatus(panel: &Panel<'_>, jb1: &Jb1) -> Result<(), Box<dyn std::error::Error>> {
+    let font = ("sans-serif", 16);
+    let [erx, ery] = jb1.rigid_eccentricity;
+    let [edx, edy] = jb1.elastic_eccentricity;
+    let mut ch = ChartBuilder::on(panel)
         .caption("meatus h(θ)", font)
         .margin(12)
         .x_label_area_size(36)
@@ -175,10 +219,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .y_desc("h [mm]")
         .label_style(font)
         .draw()?;
-    ch.draw_series(LineSeries::new(h_rigid, BLUE.stroke_width(2)))?
+    ch.draw_series(LineSeries::new(meatus(jb1, false), BLUE.stroke_width(2)))?
         .label(format!("rigid, e {:.4} mm", C * erx.hypot(ery) * 1e3))
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
-    ch.draw_series(LineSeries::new(h_def, RED.stroke_width(2)))?
+    ch.draw_series(LineSeries::new(meatus(jb1, true), RED.stroke_width(2)))?
         .label(format!(
             "elastic, e {:.4} mm (paper 0.2392 -> 0.2953 mm)",
             C * edx.hypot(edy) * 1e3
@@ -190,8 +234,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .background_style(WHITE)
         .label_font(font)
         .draw()?;
-    // (c) bore stresses.
-    let mut ch = ChartBuilder::on(&panels[2])
+    Ok(())
+}
+
+/// (c) The stresses along the housing bore, plane strain (the paper's Fig. 7c).
+fn draw_stresses(panel: &Panel<'_>, jb1: &Jb1) -> Result<(), Box<dyn std::error::Error>> {
+    let font = ("sans-serif", 16);
+    let mut ch = ChartBuilder::on(panel)
         .caption("housing bore stresses (plane strain)", font)
         .margin(12)
         .x_label_area_size(36)
@@ -209,7 +258,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "σ_z = ν(σ_r + σ_θ)",
         "von Mises (paper max 21 MPa)",
     ];
-    for ((c, color), name) in comps.into_iter().zip(colors).zip(names) {
+    for ((c, color), name) in bore_stresses(jb1).into_iter().zip(colors).zip(names) {
         ch.draw_series(LineSeries::new(c, color.stroke_width(2)))?
             .label(name)
             .legend(move |(x, y)| {
@@ -222,7 +271,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .background_style(WHITE)
         .label_font(font)
         .draw()?;
-    root.present()?;
-    println!("wrote {out}");
     Ok(())
 }

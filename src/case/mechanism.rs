@@ -609,14 +609,27 @@ fn contact(s: &ContactSection, ctx: &Ctx<'_>) -> Result<ContactParams, CaseError
         },
         friction_speed: pos("friction_speed_m_s", s.friction_speed_m_s, d.friction_speed)?,
     };
-    let cc = joint_contact;
+    check_blend_band(&joint_contact, s, ctx)?;
+    Ok(joint_contact)
+}
+
+/// The film-to-contact blend inside the boundary layer, e₀ < h_b; the error names the key
+/// (the blend width when the file gives it, else the boundary layer).
+fn check_blend_band(
+    cc: &ContactParams,
+    s: &ContactSection,
+    ctx: &Ctx<'_>,
+) -> Result<(), CaseError> {
     if cc.blend_width >= cc.boundary_layer {
         return Err(ctx.err(
-            &ck(if s.blend_width_m.is_some() {
-                "blend_width_m"
-            } else {
-                "boundary_layer_m"
-            }),
+            &format!(
+                "mechanism.contact.{}",
+                if s.blend_width_m.is_some() {
+                    "blend_width_m"
+                } else {
+                    "boundary_layer_m"
+                }
+            ),
             format!(
                 "the blend width e₀ = {:e} m must be smaller than the boundary layer \
                  h_b = {:e} m",
@@ -624,7 +637,7 @@ fn contact(s: &ContactSection, ctx: &Ctx<'_>) -> Result<ContactParams, CaseError
             ),
         ));
     }
-    Ok(joint_contact)
+    Ok(())
 }
 
 /// `[mechanism.integrator]`: the method (default by film) and its settings; returns its name.

@@ -1,5 +1,6 @@
 //! The run: ideal joint in closed form, lubricated joint by Radau5 (closed-form film) or by
-//! fixed-step BDF2 with Newton (any film). See the module docs of [`super`].
+//! BDF2 with Newton, fixed steps or under error control (any film). See the module docs of
+//! [`super`].
 
 use super::contact::{blend_weight, lankarani_nikravesh};
 use super::slider_crank::{Configuration, SliderCrankParams};
@@ -37,7 +38,6 @@ use std::cell::RefCell;
 /// # Ok::<(), jbearing_solvers::mechanism::MechanismError>(())
 /// ```
 pub fn solve_mechanism(params: &MechanismParams) -> Result<MechanismSolution, MechanismError> {
-    let bad = |name: &'static str, value: f64| MechanismError::InvalidParameter { name, value };
     if params.turns == 0 {
         return Err(bad("turns", 0.0));
     }
@@ -52,88 +52,83 @@ pub fn solve_mechanism(params: &MechanismParams) -> Result<MechanismSolution, Me
         RodSliderJoint::Lubricated(joint) => {
             joint.validate()?;
             params.mechanism.validate(joint.radial_clearance())?;
-            let model = JointModel::new(&params.mechanism, joint);
-            match (params.integrator, &joint.film) {
-                (
-                    Integrator::Radau5 {
-                        relative_tolerance,
-                        absolute_tolerance,
-                    },
-                    JointFilm::ClosedForm(m),
-                ) => {
-                    for (n, v) in [
-                        ("relative_tolerance", relative_tolerance),
-                        ("absolute_tolerance", absolute_tolerance),
-                    ] {
-                        if !(v.is_finite() && v > 0.0) {
-                            return Err(bad(n, v));
-                        }
-                    }
-                    solve_radau(params, &model, *m, relative_tolerance, absolute_tolerance)
-                }
-                (Integrator::Radau5 { .. }, JointFilm::Reynolds(_)) => {
-                    Err(MechanismError::Unsupported {
-                        what: "the Reynolds film needs the BDF2 integrator (its film state advances step by step)",
-                    })
-                }
-                (
-                    Integrator::Bdf2 {
-                        steps_per_turn,
-                        error_tolerance,
-                        newton_tolerance,
-                        max_newton_iterations,
-                    },
-                    film,
-                ) => {
-                    if let Some(tol) = error_tolerance
-                        && !(tol.is_finite() && tol > 0.0)
-                    {
-                        return Err(bad("error_tolerance", tol));
-                    }
-                    if steps_per_turn == 0 || steps_per_turn % params.samples_per_turn != 0 {
-                        return Err(bad(
-                            "steps_per_turn (a multiple of samples_per_turn)",
-                            steps_per_turn as f64,
-                        ));
-                    }
-                    if !(newton_tolerance.is_finite() && newton_tolerance > 0.0) {
-                        return Err(bad("newton_tolerance", newton_tolerance));
-                    }
-                    if max_newton_iterations == 0 {
-                        return Err(bad("max_newton_iterations", 0.0));
-                    }
-                    let mut film = match film {
-                        JointFilm::ClosedForm(m) => Film::Closed(*m),
-                        JointFilm::Reynolds(p) => {
-                            let f = ReynoldsFilm::new((**p).clone()).map_err(|e| {
-                                MechanismError::Film {
-                                    time: 0.0,
-                                    crank_angle_deg: params
-                                        .mechanism
-                                        .initial_crank_angle
-                                        .to_degrees(),
-                                    eccentricity_ratio: 0.0,
-                                    reason: e.to_string(),
-                                }
-                            })?;
-                            let state = f.initial_state([0.0, 0.0]);
-                            let feeds = p.grooves.len();
-                            Film::Reynolds(Box::new((f, state, feeds)))
-                        }
-                    };
-                    solve_bdf2(
-                        params,
-                        &model,
-                        &mut film,
-                        steps_per_turn,
-                        error_tolerance,
-                        NewtonSettings {
-                            tol: newton_tolerance,
-                            max_iter: max_newton_iterations,
-                        },
-                    )
+            solve_lubricated(params, joint)
+        }
+    }
+}
+
+/// The error of a run setting out of its range.
+fn bad(name: &'static str, value: f64) -> MechanismError {
+    MechanismError::InvalidParameter { name, value }
+}
+
+/// The lubricated joint by its integrator, the integrator's settings checked: Radau5 for a
+/// closed-form film, BDF2 for any film.
+fn solve_lubricated(
+    params: &MechanismParams,
+    joint: &LubricatedJointParams,
+) -> Result<MechanismSolution, MechanismError> {
+    let model = JointModel::new(&params.mechanism, joint);
+    match (params.integrator, &joint.film) {
+        (
+            Integrator::Radau5 {
+                relative_tolerance,
+                absolute_tolerance,
+            },
+            JointFilm::ClosedForm(m),
+        ) => {
+            for (n, v) in [
+                ("relative_tolerance", relative_tolerance),
+                ("absolute_tolerance", absolute_tolerance),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(bad(n, v));
                 }
             }
+            solve_radau(params, &model, *m, relative_tolerance, absolute_tolerance)
+        }
+        (Integrator::Radau5 { .. }, JointFilm::Reynolds(_)) => Err(MechanismError::Unsupported {
+            what: "the Reynolds film needs the BDF2 integrator (its film state advances step by step)",
+        }),
+        (
+            Integrator::Bdf2 {
+                steps_per_turn,
+                error_tolerance,
+                newton_tolerance,
+                max_newton_iterations,
+            },
+            film,
+        ) => {
+            if let Some(tol) = error_tolerance
+                && !(tol.is_finite() && tol > 0.0)
+            {
+                return Err(bad("error_tolerance", tol));
+            }
+            if steps_per_turn == 0 || steps_per_turn % params.samples_per_turn != 0 {
+                return Err(bad(
+                    "steps_per_turn (a multiple of samples_per_turn)",
+                    steps_per_turn as f64,
+                ));
+            }
+            if !(newton_tolerance.is_finite() && newton_tolerance > 0.0) {
+                return Err(bad("newton_tolerance", newton_tolerance));
+            }
+            if max_newton_iterations == 0 {
+                return Err(bad("max_newton_iterations", 0.0));
+            }
+            let newton = NewtonSettings {
+                tol: newton_tolerance,
+                max_iter: max_newton_iterations,
+            };
+            let mut film = Film::new(film, params)?;
+            solve_bdf2(
+                params,
+                &model,
+                &mut film,
+                steps_per_turn,
+                error_tolerance,
+                newton,
+            )
         }
     }
 }
@@ -243,6 +238,31 @@ impl MechanismSolution {
                 }
             }
         }
+    }
+}
+
+impl MechanismSolution {
+    /// A lubricated run's solution from its samples: h_min at each, the contact weights, events
+    /// and counts, checked finite, with the extremes and periodicity (shared by both integrators).
+    fn finish_lubricated(
+        mut self,
+        c: f64,
+        samples_per_turn: usize,
+        weights: Vec<f64>,
+        events: Vec<ContactEvent>,
+        info: MechanismInfo,
+    ) -> Result<Self, MechanismError> {
+        self.min_film_thickness = self
+            .eccentricity
+            .iter()
+            .map(|e| c - e[0].hypot(e[1]))
+            .collect();
+        self.contact_weight = weights;
+        self.contact_events = events;
+        self.info = info;
+        self.check_finite()?;
+        self.finish(Some(c), Some(samples_per_turn));
+        Ok(self)
     }
 }
 
@@ -690,14 +710,13 @@ impl RadauRun {
         samples: usize,
     ) -> Result<MechanismSolution, MechanismError> {
         let Self {
-            mut out,
+            out,
             next,
             weights,
             events,
             info,
             ..
         } = self;
-        let c = model.c;
         if next != samples {
             return Err(MechanismError::Integration {
                 time: out.time.last().copied().unwrap_or(0.0),
@@ -705,27 +724,37 @@ impl RadauRun {
                 reason: format!("{next} of {samples} output samples produced"),
             });
         }
-        out.min_film_thickness = out
-            .eccentricity
-            .iter()
-            .map(|e| c - e[0].hypot(e[1]))
-            .collect();
-        out.contact_weight = weights;
-        out.contact_events = events;
-        out.info = info;
-        out.check_finite()?;
-        out.finish(Some(c), Some(params.samples_per_turn));
-        Ok(out)
+        out.finish_lubricated(model.c, params.samples_per_turn, weights, events, info)
     }
 }
 
 // ---------------------------------------------------------------------------------------------
-// Fixed-step BDF2 (any film)
+// BDF2 (any film), fixed steps or under error control
 
 enum Film {
     Closed(ClosedFormModel),
     /// The film, its state at t^n, the number of feed grooves.
     Reynolds(Box<(ReynoldsFilm, FilmState, usize)>),
+}
+
+impl Film {
+    /// The joint's film for BDF2: a closed form, or the Reynolds film from the centred journal.
+    fn new(film: &JointFilm, params: &MechanismParams) -> Result<Self, MechanismError> {
+        Ok(match film {
+            JointFilm::ClosedForm(m) => Film::Closed(*m),
+            JointFilm::Reynolds(p) => {
+                let f = ReynoldsFilm::new((**p).clone()).map_err(|e| MechanismError::Film {
+                    time: 0.0,
+                    crank_angle_deg: params.mechanism.initial_crank_angle.to_degrees(),
+                    eccentricity_ratio: 0.0,
+                    reason: e.to_string(),
+                })?;
+                let state = f.initial_state([0.0, 0.0]);
+                let feeds = p.grooves.len();
+                Film::Reynolds(Box::new((f, state, feeds)))
+            }
+        })
+    }
 }
 
 /// One evaluation of the step residual at a trial ε^{n+1}.
@@ -782,6 +811,9 @@ struct NewtonSettings {
 /// Most halvings of a BDF2 step whose Newton fails (a step is split into up to 2⁶ parts).
 const MAX_STEP_SPLITS: usize = 6;
 
+/// BDF2 over the turns: a step (or, under error control, as many as it asks for) to each point
+/// of the grid of one turn / `steps_per_turn`, the film fields captured at the snapshot steps,
+/// every `steps_per_turn / samples_per_turn`-th grid point recorded as an output sample.
 fn solve_bdf2(
     params: &MechanismParams,
     model: &JointModel<'_>,
@@ -790,166 +822,307 @@ fn solve_bdf2(
     error_tolerance: Option<f64>,
     newton: NewtonSettings,
 ) -> Result<MechanismSolution, MechanismError> {
-    let mech = &params.mechanism;
-    let c = model.c;
-    let tau = mech.period();
-    let dt = tau / steps_per_turn as f64;
-    let n_steps = params.turns * steps_per_turn;
+    let dt = params.mechanism.period() / steps_per_turn as f64;
     let stride = steps_per_turn / params.samples_per_turn;
-    let floor = model.joint.contact.min_impact_speed;
-    // Error control: the step the controller proposes next (the first step, backward Euler
-    // from rest, is short: the start transient has time constants of microseconds).
-    let mut control = error_tolerance.map(|tol| StepControl {
-        tol,
-        rate_scale: mech.crank_speed.abs(),
-        next: 1e-3 * dt,
-        min: 1e-9 * dt,
-    });
-    let mut out = MechanismSolution::default();
-    let mut weights = Vec::new();
-    let mut info = MechanismInfo::default();
-    let mut events = Vec::new();
-    let mut hist = History {
-        t: 0.0,
-        eps: [[0.0; 2]; 2],
-        rate: [[0.0; 2]; 2],
-        acc: [0.0; 2],
-        last_dt: None,
-        in_contact: false,
-        impact: floor,
-    };
-
-    // Film field snapshots: steps base + round(k · steps_per_turn / N), k = 1 … N, of the last
-    // turn (distinct for N ≤ steps_per_turn).
-    let n_fields = match film {
-        Film::Reynolds(_) => params.field_snapshots,
-        Film::Closed(_) => 0,
-    };
-    if n_fields > steps_per_turn {
-        return Err(MechanismError::InvalidParameter {
-            name: "field_snapshots (at most steps_per_turn)",
-            value: n_fields as f64,
-        });
-    }
-    let base = (params.turns - 1) * steps_per_turn;
-    let snapshot_steps: Vec<usize> = (1..=n_fields)
-        .map(|k| base + (k * steps_per_turn + n_fields / 2) / n_fields)
-        .collect();
-    let mut film_fields = match film {
-        Film::Reynolds(b) if n_fields > 0 => {
-            let solver = b.0.solver_mut();
-            Some(MechanismFilmFields {
-                theta: solver.theta_nodes(),
-                z: solver.z_nodes(),
-                ..Default::default()
-            })
+    let mut control = error_tolerance.map(|tol| StepControl::new(&params.mechanism, dt, tol));
+    let mut run = Bdf2Run::new(params, model, film, steps_per_turn)?;
+    for n in 0..params.turns * steps_per_turn {
+        let t1 = (n + 1) as f64 * dt;
+        let trial = run.step_to(model, film, n + 1, t1, control.as_mut(), newton)?;
+        if (n + 1) % stride == 0 {
+            run.record(&params.mechanism, model, &trial);
         }
-        _ => None,
-    };
+    }
+    run.finish(params, model)
+}
 
-    // Sample at t = 0: the ideal configuration (e = 0, ė = 0), force of the film at rest.
-    {
+/// What a BDF2 run carries from step to step.
+struct Bdf2Run {
+    hist: History,
+    snapshots: Option<FieldSnapshots>,
+    info: MechanismInfo,
+    events: Vec<ContactEvent>,
+    out: MechanismSolution,
+    weights: Vec<f64>,
+}
+
+impl Bdf2Run {
+    /// Centred journal at rest at t = 0, out of contact, its sample recorded (the ideal
+    /// configuration, no film force).
+    fn new(
+        params: &MechanismParams,
+        model: &JointModel<'_>,
+        film: &mut Film,
+        steps_per_turn: usize,
+    ) -> Result<Self, MechanismError> {
+        let mech = &params.mechanism;
+        let hist = History {
+            t: 0.0,
+            eps: [[0.0; 2]; 2],
+            rate: [[0.0; 2]; 2],
+            acc: [0.0; 2],
+            last_dt: None,
+            in_contact: false,
+            impact: model.joint.contact.min_impact_speed,
+        };
+        let snapshots = FieldSnapshots::new(params, film, steps_per_turn)?;
+        let mut out = MechanismSolution::default();
         let k = mech.configuration(0.0, [0.0; 2], [0.0; 2])?;
         let acc = mech.accelerations(&k, [0.0; 2], 0.0);
         out.push_sample(mech, &k, acc, ([0.0; 2], 0.0), [0.0; 2], [0.0; 2]);
-        weights.push(0.0);
+        Ok(Self {
+            hist,
+            snapshots,
+            info: MechanismInfo::default(),
+            events: Vec::new(),
+            out,
+            weights: vec![0.0],
+        })
     }
 
-    for n in 0..n_steps {
-        let t1 = (n + 1) as f64 * dt;
-        let snapshot = film_fields.is_some() && snapshot_steps.binary_search(&(n + 1)).is_ok();
-        if let (true, Film::Reynolds(b)) = (snapshot, &mut *film) {
-            b.0.set_capture_fields(true);
-        }
-        let mut trial = match control.as_mut() {
-            None => advance(
-                model,
-                film,
-                &mut hist,
-                t1,
-                0,
-                newton,
-                &mut info,
-                &mut events,
-            )?,
-            Some(ctl) => advance_controlled(
-                model,
-                film,
-                &mut hist,
-                t1,
-                ctl,
-                newton,
-                &mut info,
-                &mut events,
-            )?,
+    /// Advance to the grid point `step` at t1, fixed or under error control, capturing the film
+    /// fields when it is a snapshot step. Returns the trial accepted at t1.
+    fn step_to(
+        &mut self,
+        model: &JointModel<'_>,
+        film: &mut Film,
+        step: usize,
+        t1: f64,
+        control: Option<&mut StepControl>,
+        newton: NewtonSettings,
+    ) -> Result<Trial, MechanismError> {
+        let snapshot = self
+            .snapshots
+            .as_ref()
+            .is_some_and(|s| s.capture_at(film, step));
+        let mut trial = match control {
+            None => self.advance(model, film, t1, 0, newton)?,
+            Some(ctl) => self.advance_controlled(model, film, t1, ctl, newton)?,
         };
-        if let (true, Film::Reynolds(b)) = (snapshot, &mut *film) {
-            b.0.set_capture_fields(false);
-            if let Some(ff) = film_fields.as_mut() {
-                let fields = trial
-                    .film_fields
-                    .take()
-                    .ok_or(MechanismError::Unsupported {
-                        what: "the Reynolds film returned no fields at a snapshot",
-                    })?;
-                ff.time.push(t1);
-                ff.crank_angle_deg.push(model.crank_deg(t1));
-                ff.fields.push(fields);
+        if let (true, Some(s)) = (snapshot, self.snapshots.as_mut()) {
+            s.take(model, film, t1, &mut trial)?;
+        }
+        Ok(trial)
+    }
+
+    /// Advance the history to t1 by one BDF2 step, or — when its Newton fails — by two halves
+    /// (recursively, at most [`MAX_STEP_SPLITS`] deep). Returns the trial accepted at t1.
+    fn advance(
+        &mut self,
+        model: &JointModel<'_>,
+        film: &mut Film,
+        t1: f64,
+        depth: usize,
+        newton: NewtonSettings,
+    ) -> Result<Trial, MechanismError> {
+        match bdf2_step(model, film, &self.hist, t1, newton, &mut self.info) {
+            Ok((trial, eps)) => {
+                self.accept(model, film, t1, eps, &trial);
+                Ok(trial)
+            }
+            Err(MechanismError::NewtonFailed { .. }) if depth < MAX_STEP_SPLITS => {
+                let mid = 0.5 * (self.hist.t + t1);
+                self.advance(model, film, mid, depth + 1, newton)?;
+                self.advance(model, film, t1, depth + 1, newton)
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    /// Advance the history to t1 (a grid point) by as many BDF2 steps as the error control asks
+    /// for: a step is accepted when its local error estimate is within the tolerance, and the
+    /// next step is h · 0.9 (tol/err)^{1/3} (between 0.2 h and 2 h; third power: the estimate is
+    /// O(h³)); a rejected step or a failed Newton is retried shorter. Returns the trial at t1.
+    fn advance_controlled(
+        &mut self,
+        model: &JointModel<'_>,
+        film: &mut Film,
+        t1: f64,
+        ctl: &mut StepControl,
+        newton: NewtonSettings,
+    ) -> Result<Trial, MechanismError> {
+        loop {
+            let (h, ta, last) = ctl.next_step(self.hist.t, t1);
+            let step_newton = ctl.newton_for(h, newton);
+            match bdf2_step(model, film, &self.hist, ta, step_newton, &mut self.info) {
+                Ok((trial, eps)) => {
+                    let err = local_error(&self.hist, h, eps).unwrap_or(0.0);
+                    if !ctl.judge(model, ta, h, err)? {
+                        self.info.rejected_steps += 1;
+                        continue;
+                    }
+                    self.accept(model, film, ta, eps, &trial);
+                    if last {
+                        return Ok(trial);
+                    }
+                }
+                Err(MechanismError::NewtonFailed { .. }) if h > ctl.min => {
+                    self.info.rejected_steps += 1;
+                    ctl.next = (0.25 * h).max(ctl.min);
+                }
+                Err(e) => return Err(e),
             }
         }
-        if (n + 1) % stride == 0 {
-            let eps = hist.eps[0];
-            let rate = hist.rate[0];
-            out.push_sample(
-                mech,
-                &trial.k,
-                trial.acc,
-                (trial.force.total, trial.force.torque),
-                [c * eps[0], c * eps[1]],
-                [c * rate[0], c * rate[1]],
-            );
-            weights.push(trial.force.weight);
-        }
     }
-    out.min_film_thickness = out
-        .eccentricity
-        .iter()
-        .map(|e| c - e[0].hypot(e[1]))
-        .collect();
-    out.contact_weight = weights;
-    out.contact_events = events;
-    out.info = info;
-    out.film_fields = film_fields;
-    out.check_finite()?;
-    out.finish(Some(c), Some(params.samples_per_turn));
-    Ok(out)
+
+    /// Take the accepted step to t1 into the history: the film state, the contact state (an
+    /// onset or release recorded as an event), the step counted.
+    fn accept(
+        &mut self,
+        model: &JointModel<'_>,
+        film: &mut Film,
+        t1: f64,
+        eps: [f64; 2],
+        trial: &Trial,
+    ) {
+        let hist = &mut self.hist;
+        let c = model.c;
+        if let (Film::Reynolds(b), Some(state)) = (&mut *film, trial.film_state.clone()) {
+            b.1 = state;
+        }
+        let step_impact = step_impact(model, hist);
+        hist.last_dt = Some(t1 - hist.t);
+        hist.t = t1;
+        hist.eps = [eps, hist.eps[0]];
+        hist.rate = [trial.rate, hist.rate[0]];
+        hist.acc = trial.eps_acc;
+        let r_now = eps[0].hypot(eps[1]) * c;
+        let now_contact = if hist.in_contact {
+            r_now > model.release_radius
+        } else {
+            r_now > model.contact_radius
+        };
+        if now_contact != hist.in_contact {
+            let e = eps[0].hypot(eps[1]);
+            let radial = c * (eps[0] * trial.rate[0] + eps[1] * trial.rate[1]) / e;
+            self.events.push(ContactEvent {
+                time: t1,
+                crank_angle_deg: model.crank_deg(t1),
+                kind: if now_contact {
+                    ContactEventKind::Onset
+                } else {
+                    ContactEventKind::Release
+                },
+                radial_velocity: radial,
+            });
+            if now_contact {
+                hist.impact = step_impact;
+            }
+            hist.in_contact = now_contact;
+        }
+        self.info.steps += 1;
+    }
+
+    /// The output sample at the grid point just reached: loads, ε and ε̇, the contact weight.
+    fn record(&mut self, mech: &SliderCrankParams, model: &JointModel<'_>, trial: &Trial) {
+        let c = model.c;
+        let eps = self.hist.eps[0];
+        let rate = self.hist.rate[0];
+        self.out.push_sample(
+            mech,
+            &trial.k,
+            trial.acc,
+            (trial.force.total, trial.force.torque),
+            [c * eps[0], c * eps[1]],
+            [c * rate[0], c * rate[1]],
+        );
+        self.weights.push(trial.force.weight);
+    }
+
+    /// The solution, with the film field snapshots when they were taken.
+    fn finish(
+        self,
+        params: &MechanismParams,
+        model: &JointModel<'_>,
+    ) -> Result<MechanismSolution, MechanismError> {
+        let mut out = self.out;
+        out.film_fields = self.snapshots.map(|s| s.fields);
+        out.finish_lubricated(
+            model.c,
+            params.samples_per_turn,
+            self.weights,
+            self.events,
+            self.info,
+        )
+    }
 }
 
-/// Advance the history to t1 by one BDF2 step, or — when its Newton fails — by two halves
-/// (recursively, at most [`MAX_STEP_SPLITS`] deep). Returns the trial accepted at t1.
-#[allow(clippy::too_many_arguments)]
-fn advance(
-    model: &JointModel<'_>,
-    film: &mut Film,
-    hist: &mut History,
-    t1: f64,
-    depth: usize,
-    newton: NewtonSettings,
-    info: &mut MechanismInfo,
-    events: &mut Vec<ContactEvent>,
-) -> Result<Trial, MechanismError> {
-    match bdf2_step(model, film, hist, t1, newton, info) {
-        Ok((trial, eps)) => {
-            commit(model, film, hist, t1, eps, &trial, events);
-            info.steps += 1;
-            Ok(trial)
+/// The Reynolds film's field snapshots over the last turn: the steps base + round(k ·
+/// steps_per_turn / N), k = 1 … N (distinct for N ≤ steps_per_turn), and the fields taken.
+struct FieldSnapshots {
+    steps: Vec<usize>,
+    fields: MechanismFilmFields,
+}
+
+impl FieldSnapshots {
+    /// The snapshot steps and the film's grid (None for a closed form or no snapshots); more
+    /// snapshots than steps per turn is an error.
+    fn new(
+        params: &MechanismParams,
+        film: &mut Film,
+        steps_per_turn: usize,
+    ) -> Result<Option<Self>, MechanismError> {
+        let n_fields = match film {
+            Film::Reynolds(_) => params.field_snapshots,
+            Film::Closed(_) => 0,
+        };
+        if n_fields > steps_per_turn {
+            return Err(MechanismError::InvalidParameter {
+                name: "field_snapshots (at most steps_per_turn)",
+                value: n_fields as f64,
+            });
         }
-        Err(MechanismError::NewtonFailed { .. }) if depth < MAX_STEP_SPLITS => {
-            let mid = 0.5 * (hist.t + t1);
-            advance(model, film, hist, mid, depth + 1, newton, info, events)?;
-            advance(model, film, hist, t1, depth + 1, newton, info, events)
+        let Film::Reynolds(b) = film else {
+            return Ok(None);
+        };
+        if n_fields == 0 {
+            return Ok(None);
         }
-        Err(e) => Err(e),
+        let base = (params.turns - 1) * steps_per_turn;
+        let solver = b.0.solver_mut();
+        Ok(Some(Self {
+            steps: (1..=n_fields)
+                .map(|k| base + (k * steps_per_turn + n_fields / 2) / n_fields)
+                .collect(),
+            fields: MechanismFilmFields {
+                theta: solver.theta_nodes(),
+                z: solver.z_nodes(),
+                ..Default::default()
+            },
+        }))
+    }
+
+    /// Whether `step` is a snapshot step; if so the film is asked to capture its fields.
+    fn capture_at(&self, film: &mut Film, step: usize) -> bool {
+        let snapshot = self.steps.binary_search(&step).is_ok();
+        if let (true, Film::Reynolds(b)) = (snapshot, film) {
+            b.0.set_capture_fields(true);
+        }
+        snapshot
+    }
+
+    /// The fields of the trial accepted at t1 (a snapshot step), the capture switched off.
+    fn take(
+        &mut self,
+        model: &JointModel<'_>,
+        film: &mut Film,
+        t1: f64,
+        trial: &mut Trial,
+    ) -> Result<(), MechanismError> {
+        let Film::Reynolds(b) = film else {
+            return Ok(());
+        };
+        b.0.set_capture_fields(false);
+        let fields = trial
+            .film_fields
+            .take()
+            .ok_or(MechanismError::Unsupported {
+                what: "the Reynolds film returned no fields at a snapshot",
+            })?;
+        self.fields.time.push(t1);
+        self.fields.crank_angle_deg.push(model.crank_deg(t1));
+        self.fields.fields.push(fields);
+        Ok(())
     }
 }
 
@@ -964,6 +1137,81 @@ struct StepControl {
     next: f64,
     /// Shortest step allowed (s).
     min: f64,
+}
+
+impl StepControl {
+    /// The controller of a run on the grid `dt`: the first step, backward Euler from rest, is
+    /// short (the start transient has time constants of microseconds).
+    fn new(mech: &SliderCrankParams, dt: f64, tol: f64) -> Self {
+        Self {
+            tol,
+            rate_scale: mech.crank_speed.abs(),
+            next: 1e-3 * dt,
+            min: 1e-9 * dt,
+        }
+    }
+
+    /// The next step from t towards the grid point t1: its length h, its end and whether it
+    /// reaches t1. It ends on t1 when the proposed step reaches it (or nearly: no sliver
+    /// steps), else covers at most half the rest when it covers more than half of it (two even
+    /// steps, not a long one and a sliver).
+    fn next_step(&self, t: f64, t1: f64) -> (f64, f64, bool) {
+        let remaining = t1 - t;
+        let (h, last) = if self.next >= remaining * (1.0 - 1e-9) {
+            (remaining, true)
+        } else if self.next > 0.5 * remaining {
+            (0.5 * remaining, false)
+        } else {
+            (self.next, false)
+        };
+        (h, if last { t1 } else { t + h }, last)
+    }
+
+    /// The Newton settings of a step of length h: the Newton error δε enters ε̇ as a₀ δε / h,
+    /// so on short steps it is kept smaller, that the velocity (and the film's squeeze term) it
+    /// perturbs stays within 1 % of the tolerance per radian of crank (floored at round-off).
+    fn newton_for(&self, h: f64, newton: NewtonSettings) -> NewtonSettings {
+        NewtonSettings {
+            tol: newton
+                .tol
+                .min((0.01 * self.tol * (h * self.rate_scale).min(1.0)).max(1e-14)),
+            ..newton
+        }
+    }
+
+    /// Judge a converged step of length h ending at `ta` by its local error estimate: accepted
+    /// (true) or rejected (false), the next step proposed either way; a step of the shortest
+    /// length still above the tolerance is an error.
+    fn judge(
+        &mut self,
+        model: &JointModel<'_>,
+        ta: f64,
+        h: f64,
+        err: f64,
+    ) -> Result<bool, MechanismError> {
+        let ratio = if err > 0.0 {
+            0.9 * (self.tol / err).cbrt()
+        } else {
+            2.0
+        };
+        if err <= self.tol || h <= self.min {
+            if err > self.tol {
+                return Err(MechanismError::Integration {
+                    time: ta,
+                    crank_angle_deg: model.crank_deg(ta),
+                    reason: format!(
+                        "BDF2 step size underflow: local error {err:.3e} > tolerance {:.3e} at a step of {h:.3e} s",
+                        self.tol
+                    ),
+                });
+            }
+            self.next = (h * ratio.clamp(0.2, 2.0)).max(self.min);
+            Ok(true)
+        } else {
+            self.next = (h * ratio.clamp(0.2, 0.9)).max(self.min);
+            Ok(false)
+        }
+    }
 }
 
 /// Local error estimate of a BDF2 step of length h (Milne's device) from the history at t^n to
@@ -987,128 +1235,6 @@ fn local_error(hist: &History, h: f64, eps: [f64; 2]) -> Option<f64> {
     Some(0.4 * err)
 }
 
-/// Advance the history to t1 (a grid point) by as many BDF2 steps as the error control asks
-/// for: a step is accepted when its local error estimate is within the tolerance, and the next
-/// step is h · 0.9 (tol/err)^{1/3} (between 0.2 h and 2 h; third power: the estimate is
-/// O(h³)); a rejected step or a failed Newton is retried shorter. Returns the trial at t1.
-#[allow(clippy::too_many_arguments)]
-fn advance_controlled(
-    model: &JointModel<'_>,
-    film: &mut Film,
-    hist: &mut History,
-    t1: f64,
-    ctl: &mut StepControl,
-    newton: NewtonSettings,
-    info: &mut MechanismInfo,
-    events: &mut Vec<ContactEvent>,
-) -> Result<Trial, MechanismError> {
-    loop {
-        let remaining = t1 - hist.t;
-        // End on t1 when the step reaches it (or nearly: no sliver steps), else at most half
-        // the rest when the step covers more than half of it (two even steps, not a long one
-        // and a sliver).
-        let (h, last) = if ctl.next >= remaining * (1.0 - 1e-9) {
-            (remaining, true)
-        } else if ctl.next > 0.5 * remaining {
-            (0.5 * remaining, false)
-        } else {
-            (ctl.next, false)
-        };
-        let ta = if last { t1 } else { hist.t + h };
-        // The Newton error δε enters ε̇ as a₀ δε / h: on short steps it is kept smaller, so that
-        // the velocity (and the film's squeeze term) it perturbs stays within 1 % of the
-        // tolerance per radian of crank (floored at round-off).
-        let step_newton = NewtonSettings {
-            tol: newton
-                .tol
-                .min((0.01 * ctl.tol * (h * ctl.rate_scale).min(1.0)).max(1e-14)),
-            ..newton
-        };
-        match bdf2_step(model, film, hist, ta, step_newton, info) {
-            Ok((trial, eps)) => {
-                let err = local_error(hist, h, eps).unwrap_or(0.0);
-                let ratio = if err > 0.0 {
-                    0.9 * (ctl.tol / err).cbrt()
-                } else {
-                    2.0
-                };
-                if err <= ctl.tol || h <= ctl.min {
-                    if err > ctl.tol {
-                        return Err(MechanismError::Integration {
-                            time: ta,
-                            crank_angle_deg: model.crank_deg(ta),
-                            reason: format!(
-                                "BDF2 step size underflow: local error {err:.3e} > tolerance {:.3e} at a step of {h:.3e} s",
-                                ctl.tol
-                            ),
-                        });
-                    }
-                    commit(model, film, hist, ta, eps, &trial, events);
-                    info.steps += 1;
-                    ctl.next = (h * ratio.clamp(0.2, 2.0)).max(ctl.min);
-                    if last {
-                        return Ok(trial);
-                    }
-                } else {
-                    info.rejected_steps += 1;
-                    ctl.next = (h * ratio.clamp(0.2, 0.9)).max(ctl.min);
-                }
-            }
-            Err(MechanismError::NewtonFailed { .. }) if h > ctl.min => {
-                info.rejected_steps += 1;
-                ctl.next = (0.25 * h).max(ctl.min);
-            }
-            Err(e) => return Err(e),
-        }
-    }
-}
-
-/// Take the accepted step into the history (film state, contact events).
-fn commit(
-    model: &JointModel<'_>,
-    film: &mut Film,
-    hist: &mut History,
-    t1: f64,
-    eps: [f64; 2],
-    trial: &Trial,
-    events: &mut Vec<ContactEvent>,
-) {
-    let c = model.c;
-    if let (Film::Reynolds(b), Some(state)) = (&mut *film, trial.film_state.clone()) {
-        b.1 = state;
-    }
-    let step_impact = step_impact(model, hist);
-    hist.last_dt = Some(t1 - hist.t);
-    hist.t = t1;
-    hist.eps = [eps, hist.eps[0]];
-    hist.rate = [trial.rate, hist.rate[0]];
-    hist.acc = trial.eps_acc;
-    let r_now = eps[0].hypot(eps[1]) * c;
-    let now_contact = if hist.in_contact {
-        r_now > model.release_radius
-    } else {
-        r_now > model.contact_radius
-    };
-    if now_contact != hist.in_contact {
-        let e = eps[0].hypot(eps[1]);
-        let radial = c * (eps[0] * trial.rate[0] + eps[1] * trial.rate[1]) / e;
-        events.push(ContactEvent {
-            time: t1,
-            crank_angle_deg: model.crank_deg(t1),
-            kind: if now_contact {
-                ContactEventKind::Onset
-            } else {
-                ContactEventKind::Release
-            },
-            radial_velocity: radial,
-        });
-        if now_contact {
-            hist.impact = step_impact;
-        }
-        hist.in_contact = now_contact;
-    }
-}
-
 /// Impact velocity for a step from the history: frozen during a contact, the approach speed
 /// at t^n otherwise (floored).
 fn step_impact(model: &JointModel<'_>, hist: &History) -> f64 {
@@ -1125,7 +1251,8 @@ fn step_impact(model: &JointModel<'_>, hist: &History) -> f64 {
     }
 }
 
-/// One BDF2 step from the history to t1: Newton on ε^{n+1}. Returns the accepted trial and ε.
+/// One BDF2 step from the history to t1: the predictor, then Newton on ε^{n+1}. Returns the
+/// accepted trial and ε.
 fn bdf2_step(
     model: &JointModel<'_>,
     film: &mut Film,
@@ -1134,261 +1261,338 @@ fn bdf2_step(
     newton: NewtonSettings,
     info: &mut MechanismInfo,
 ) -> Result<(Trial, [f64; 2]), MechanismError> {
-    let NewtonSettings { tol, max_iter } = newton;
-    let dt = t1 - hist.t;
-    let [e_n, e_nm1] = hist.eps;
-    let [r_n, r_nm1] = hist.rate;
-    let a_n = hist.acc;
-    // Variable-step BDF2 (backward Euler on the first step): ẏ^{n+1} = (a₀ y^{n+1} − h)/Δt,
-    // h = a₁ y^n − a₂ y^{n−1} (crate::time_scheme::TimeScheme::bdf2_coefficients).
-    let (a0, hist_e, hist_r) = match hist.last_dt {
-        None => (1.0, e_n, r_n),
-        Some(prev) => {
-            let (a0, a1, a2) = crate::time_scheme::TimeScheme::bdf2_coefficients(dt / prev);
-            (
-                a0,
-                [a1 * e_n[0] - a2 * e_nm1[0], a1 * e_n[1] - a2 * e_nm1[1]],
-                [a1 * r_n[0] - a2 * r_nm1[0], a1 * r_n[1] - a2 * r_nm1[1]],
-            )
-        }
-    };
-    let step_impact = step_impact(model, hist);
-    // Predictor: second-order extrapolation.
-    let mut eps = [
-        e_n[0] + dt * r_n[0] + 0.5 * dt * dt * a_n[0],
-        e_n[1] + dt * r_n[1] + 0.5 * dt * dt * a_n[1],
-    ];
-    // Newton with the Jacobian kept while the updates contract (chord steps) and taken
-    // afresh when they do not; the evaluated iterate is accepted once the next update is
-    // below the tolerance (its film state then belongs to it). Globalised for the stiff,
-    // kinked contact law: an update is at most MAX_NEWTON_STEP long and is halved until the
-    // residual decreases (at most 8 halvings; then a fresh Jacobian, or failure).
-    let eval = |film: &mut Film, eps: [f64; 2], want: bool, info: &mut MechanismInfo| {
-        info.evaluations += 1;
-        evaluate_bdf2(
+    let step = Bdf2Step::new(model, hist, t1);
+    let eps = step.predict(hist);
+    step.newton(film, eps, newton, info)
+}
+
+/// The equation of one BDF2 step to t1: ε̈^{n+1} by the BDF2 formulas equals the mechanism's
+/// ε̈ at (ε^{n+1}, ε̇^{n+1}) under the joint force with the step's impact velocity.
+struct Bdf2Step<'m, 'a> {
+    model: &'m JointModel<'a>,
+    t1: f64,
+    dt: f64,
+    /// Variable-step BDF2 (backward Euler on the first step): ẏ^{n+1} = (a₀ y^{n+1} − h)/Δt,
+    /// h = a₁ y^n − a₂ y^{n−1} (crate::time_scheme::TimeScheme::bdf2_coefficients), for
+    /// y = ε (`hist_e`) and y = ε̇ (`hist_r`).
+    a0: f64,
+    hist_e: [f64; 2],
+    hist_r: [f64; 2],
+    impact: f64,
+}
+
+impl<'m, 'a> Bdf2Step<'m, 'a> {
+    /// The step's BDF2 coefficients from the history and its impact velocity.
+    fn new(model: &'m JointModel<'a>, hist: &History, t1: f64) -> Self {
+        let dt = t1 - hist.t;
+        let [e_n, e_nm1] = hist.eps;
+        let [r_n, r_nm1] = hist.rate;
+        let (a0, hist_e, hist_r) = match hist.last_dt {
+            None => (1.0, e_n, r_n),
+            Some(prev) => {
+                let (a0, a1, a2) = crate::time_scheme::TimeScheme::bdf2_coefficients(dt / prev);
+                (
+                    a0,
+                    [a1 * e_n[0] - a2 * e_nm1[0], a1 * e_n[1] - a2 * e_nm1[1]],
+                    [a1 * r_n[0] - a2 * r_nm1[0], a1 * r_n[1] - a2 * r_nm1[1]],
+                )
+            }
+        };
+        Self {
             model,
-            film,
             t1,
+            dt,
             a0,
             hist_e,
             hist_r,
-            eps,
-            step_impact,
-            dt,
-            want,
-            info,
-        )
-    };
-    let mut trial = eval(film, eps, true, info)?;
-    let mut jac: Option<[[f64; 2]; 2]> = None;
-    let mut fresh = false;
-    let mut prev_update = f64::INFINITY;
-    let mut last_update = f64::INFINITY;
-    let mut accepted: Option<Trial> = None;
-    let mut iter = 0;
-    while iter < max_iter {
-        iter += 1;
-        let j = match jac {
-            Some(j) => j,
-            None => {
-                if trial.film_jacobian.is_none() && matches!(film, Film::Reynolds(_)) {
-                    // The film's Jacobian belongs to its last solve: solve at ε again.
-                    trial = eval(film, eps, true, info)?;
-                }
-                let j = bdf2_jacobian(
-                    model,
-                    film,
-                    t1,
-                    a0,
-                    hist_e,
-                    hist_r,
-                    eps,
-                    step_impact,
-                    dt,
-                    &trial,
-                )?;
-                jac = Some(j);
-                fresh = true;
-                j
-            }
-        };
-        let Some(d) = solve2(j, trial.residual) else {
-            return Err(MechanismError::NewtonFailed {
-                time: t1,
-                crank_angle_deg: model.crank_deg(t1),
-                update: f64::INFINITY,
-                iterations: iter,
-            });
-        };
-        last_update = d[0].hypot(d[1]);
-        if last_update <= tol {
-            accepted = Some(trial);
-            break;
+            impact: step_impact(model, hist),
         }
-        let r0 = trial.residual[0].hypot(trial.residual[1]);
-        let mut lam = (MAX_NEWTON_STEP / last_update).min(1.0);
-        let mut next = None;
+    }
+
+    /// Predictor: second-order extrapolation from ε^n, ε̇^n, ε̈^n.
+    fn predict(&self, hist: &History) -> [f64; 2] {
+        let (e_n, r_n, a_n, dt) = (hist.eps[0], hist.rate[0], hist.acc, self.dt);
+        [
+            e_n[0] + dt * r_n[0] + 0.5 * dt * dt * a_n[0],
+            e_n[1] + dt * r_n[1] + 0.5 * dt * dt * a_n[1],
+        ]
+    }
+
+    /// ε̇^{n+1} and ε̈^{n+1} of a trial ε^{n+1} by the BDF2 formulas.
+    fn rates(&self, eps: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+        let (a0, dt) = (self.a0, self.dt);
+        let rate = [
+            (a0 * eps[0] - self.hist_e[0]) / dt,
+            (a0 * eps[1] - self.hist_e[1]) / dt,
+        ];
+        let acc_bdf = [
+            (a0 * rate[0] - self.hist_r[0]) / dt,
+            (a0 * rate[1] - self.hist_r[1]) / dt,
+        ];
+        (rate, acc_bdf)
+    }
+
+    /// Newton on ε^{n+1} from `eps`, with the Jacobian kept while the updates contract (chord
+    /// steps) and taken afresh when they do not; the evaluated iterate is accepted once the next
+    /// update is below the tolerance (its film state then belongs to it). Globalised for the
+    /// stiff, kinked contact law by [`Self::line_search`]; when that finds no descent, a fresh
+    /// Jacobian, or failure.
+    fn newton(
+        &self,
+        film: &mut Film,
+        mut eps: [f64; 2],
+        settings: NewtonSettings,
+        info: &mut MechanismInfo,
+    ) -> Result<(Trial, [f64; 2]), MechanismError> {
+        let NewtonSettings { tol, max_iter } = settings;
+        let failed = |update, iterations| MechanismError::NewtonFailed {
+            time: self.t1,
+            crank_angle_deg: self.model.crank_deg(self.t1),
+            update,
+            iterations,
+        };
+        let mut trial = self.evaluate(film, eps, true, info)?;
+        let mut jac: Option<[[f64; 2]; 2]> = None;
+        let mut fresh = false;
+        let mut prev_update = f64::INFINITY;
+        let mut last_update = f64::INFINITY;
+        for iter in 1..=max_iter {
+            let j = match jac {
+                Some(j) => j,
+                None => {
+                    let j = self.fresh_jacobian(film, eps, &mut trial, info)?;
+                    jac = Some(j);
+                    fresh = true;
+                    j
+                }
+            };
+            let Some(d) = solve2(j, trial.residual) else {
+                return Err(failed(f64::INFINITY, iter));
+            };
+            last_update = d[0].hypot(d[1]);
+            if last_update <= tol {
+                return Ok((trial, eps));
+            }
+            let r0 = trial.residual[0].hypot(trial.residual[1]);
+            match self.line_search(film, eps, d, last_update, r0, tol, info)? {
+                Some((cand, t, lam)) => {
+                    eps = cand;
+                    trial = t;
+                    if !fresh && last_update > 0.3 * prev_update {
+                        jac = None;
+                    }
+                    fresh = false;
+                    prev_update = lam * last_update;
+                }
+                None if !fresh => {
+                    jac = None; // retry from ε with a fresh Jacobian
+                    prev_update = f64::INFINITY;
+                }
+                None => break,
+            }
+        }
+        Err(failed(last_update, max_iter))
+    }
+
+    /// The Jacobian at ε taken afresh; the Reynolds film's Jacobian belongs to its last solve,
+    /// so a trial without one is solved at ε again first.
+    fn fresh_jacobian(
+        &self,
+        film: &mut Film,
+        eps: [f64; 2],
+        trial: &mut Trial,
+        info: &mut MechanismInfo,
+    ) -> Result<[[f64; 2]; 2], MechanismError> {
+        if trial.film_jacobian.is_none() && matches!(film, Film::Reynolds(_)) {
+            *trial = self.evaluate(film, eps, true, info)?;
+        }
+        self.jacobian(film, eps, trial)
+    }
+
+    /// The damped update ε − λ d: λ at most [`MAX_NEWTON_STEP`] / |d| (and 1), halved until the
+    /// residual falls below `r0` or the step is within 10 × the tolerance (at most 8 halvings).
+    /// Returns the new ε, its trial and λ; None when no halving decreased the residual.
+    #[allow(clippy::too_many_arguments)]
+    fn line_search(
+        &self,
+        film: &mut Film,
+        eps: [f64; 2],
+        d: [f64; 2],
+        update: f64,
+        r0: f64,
+        tol: f64,
+        info: &mut MechanismInfo,
+    ) -> Result<Option<([f64; 2], Trial, f64)>, MechanismError> {
+        let mut lam = (MAX_NEWTON_STEP / update).min(1.0);
         for _ in 0..=8 {
             let cand = [eps[0] - lam * d[0], eps[1] - lam * d[1]];
-            let t = eval(film, cand, false, info)?;
+            let t = self.evaluate(film, cand, false, info)?;
             let rn = t.residual[0].hypot(t.residual[1]);
-            if rn < r0 || lam * last_update <= 10.0 * tol {
-                next = Some((cand, t));
-                break;
+            if rn < r0 || lam * update <= 10.0 * tol {
+                return Ok(Some((cand, t, lam)));
             }
             lam *= 0.5;
         }
-        match next {
-            Some((cand, t)) => {
-                eps = cand;
-                trial = t;
-                if !fresh && last_update > 0.3 * prev_update {
-                    jac = None;
-                }
-                fresh = false;
-                prev_update = lam * last_update;
-            }
-            None if !fresh => {
-                jac = None; // retry from ε with a fresh Jacobian
-                prev_update = f64::INFINITY;
-            }
-            None => break,
-        }
+        Ok(None)
     }
-    let Some(trial) = accepted else {
-        return Err(MechanismError::NewtonFailed {
-            time: t1,
-            crank_angle_deg: model.crank_deg(t1),
-            update: last_update,
-            iterations: max_iter,
-        });
-    };
-    Ok((trial, eps))
-}
 
-/// The residual of one BDF2 step at the trial ε (one film step for the Reynolds film).
-#[allow(clippy::too_many_arguments)]
-fn evaluate_bdf2(
-    model: &JointModel<'_>,
-    film: &mut Film,
-    t: f64,
-    a0: f64,
-    hist_e: [f64; 2],
-    hist_r: [f64; 2],
-    eps: [f64; 2],
-    impact: f64,
-    dt: f64,
-    want_jacobian: bool,
-    info: &mut MechanismInfo,
-) -> Result<Trial, MechanismError> {
-    let c = model.c;
-    let rate = [
-        (a0 * eps[0] - hist_e[0]) / dt,
-        (a0 * eps[1] - hist_e[1]) / dt,
-    ];
-    let acc_bdf = [
-        (a0 * rate[0] - hist_r[0]) / dt,
-        (a0 * rate[1] - hist_r[1]) / dt,
-    ];
-    let e = [c * eps[0], c * eps[1]];
-    let ed = [c * rate[0], c * rate[1]];
-    let mut film_jacobian = None;
-    let mut film_state = None;
-    let mut film_fields = None;
-    let (g, k, acc, force) = match film {
-        Film::Closed(m) => {
-            let m = *m;
-            model.eps_acceleration(t, eps, rate, |k| {
-                model.blend(e, ed, k.rod_rate, impact, || {
-                    model.closed_film(m, eps, rate, k.rod_rate)
-                })
-            })?
-        }
-        Film::Reynolds(b) => {
-            let (rf, state, feeds) = &mut **b;
-            // The film follows the journal, clamped to the end of the blend band in dry contact.
-            let r = eps[0].hypot(eps[1]);
-            let fe = if r > model.film_limit {
-                [eps[0] * model.film_limit / r, eps[1] * model.film_limit / r]
-            } else {
-                eps
-            };
-            let feeds = *feeds;
-            let mut jac_slot = None;
-            let mut state_slot = None;
-            let mut fields_slot = None;
-            let res = model.eps_acceleration(t, eps, rate, |k| {
-                let cond = OperatingConditions {
-                    journal_speed: k.rod_rate,
-                    bearing_speed: 0.0,
-                    feed_pressures: vec![0.0; feeds],
-                };
-                info.film_steps += 1;
-                let (resp, next) = rf.step(state, fe, dt, &cond).map_err(|e| e.to_string())?;
-                state_slot = Some(next);
-                fields_slot = resp.fields;
-                let (f, torque) = (resp.film_force, resp.friction_torque_journal);
-                let out = model.blend(e, ed, k.rod_rate, impact, || Ok((f, torque)))?;
-                if want_jacobian && out.weight < 1.0 {
-                    jac_slot = rf.force_jacobian().map(|j| j.map_err(|e| e.to_string()));
-                }
-                Ok(out)
-            })?;
-            film_state = state_slot;
-            film_fields = fields_slot;
-            if let Some(j) = jac_slot {
-                film_jacobian = Some(j.map_err(|reason| MechanismError::Film {
-                    time: t,
-                    crank_angle_deg: model.crank_deg(t),
-                    eccentricity_ratio: r,
-                    reason,
-                })?);
-            }
-            res
-        }
-    };
-    Ok(Trial {
-        residual: [acc_bdf[0] - g[0], acc_bdf[1] - g[1]],
-        rate,
-        eps_acc: acc_bdf,
-        acc,
-        k,
-        force,
-        film_jacobian,
-        film_state,
-        film_fields,
-    })
-}
-
-/// Jacobian of the BDF2 residual with respect to ε^{n+1} (module docs).
-#[allow(clippy::too_many_arguments)]
-fn bdf2_jacobian(
-    model: &JointModel<'_>,
-    film: &Film,
-    t: f64,
-    a0: f64,
-    hist_e: [f64; 2],
-    hist_r: [f64; 2],
-    eps: [f64; 2],
-    impact: f64,
-    dt: f64,
-    trial: &Trial,
-) -> Result<[[f64; 2]; 2], MechanismError> {
-    let c = model.c;
-    // Residual with the film force and torque given (frozen) or the closed form evaluated.
-    type Frozen = Option<([f64; 2], f64)>;
-    let residual = |eps: [f64; 2], frozen: Frozen| -> Result<[f64; 2], MechanismError> {
-        let rate = [
-            (a0 * eps[0] - hist_e[0]) / dt,
-            (a0 * eps[1] - hist_e[1]) / dt,
-        ];
-        let acc_bdf = [
-            (a0 * rate[0] - hist_r[0]) / dt,
-            (a0 * rate[1] - hist_r[1]) / dt,
-        ];
+    /// The residual of the step at the trial ε (one film step for the Reynolds film), counted
+    /// as an evaluation; with the film's Jacobian when `want_jacobian`.
+    fn evaluate(
+        &self,
+        film: &mut Film,
+        eps: [f64; 2],
+        want_jacobian: bool,
+        info: &mut MechanismInfo,
+    ) -> Result<Trial, MechanismError> {
+        info.evaluations += 1;
+        let model = self.model;
+        let c = model.c;
+        let (rate, acc_bdf) = self.rates(eps);
         let e = [c * eps[0], c * eps[1]];
         let ed = [c * rate[0], c * rate[1]];
-        let (g, ..) = model.eps_acceleration(t, eps, rate, |k| match (film, frozen) {
+        let mut film_step = FilmStep::default();
+        let (g, k, acc, force) = match film {
+            Film::Closed(m) => {
+                let m = *m;
+                model.eps_acceleration(self.t1, eps, rate, |k| {
+                    model.blend(e, ed, k.rod_rate, self.impact, || {
+                        model.closed_film(m, eps, rate, k.rod_rate)
+                    })
+                })?
+            }
+            Film::Reynolds(b) => {
+                self.reynolds_force(b, eps, rate, want_jacobian, &mut film_step, info)?
+            }
+        };
+        Ok(Trial {
+            residual: [acc_bdf[0] - g[0], acc_bdf[1] - g[1]],
+            rate,
+            eps_acc: acc_bdf,
+            acc,
+            k,
+            force,
+            film_jacobian: film_step.jacobian,
+            film_state: film_step.state,
+            film_fields: film_step.fields,
+        })
+    }
+
+    /// The mechanism's ε̈ at (ε, ε̇) under the Reynolds film's force (one film step over Δt from
+    /// its state at t^n, the journal clamped to the end of the blend band in dry contact),
+    /// blended with the contact; the film's next state, fields and Jacobian into `out`.
+    #[allow(clippy::type_complexity)]
+    fn reynolds_force(
+        &self,
+        b: &mut (ReynoldsFilm, FilmState, usize),
+        eps: [f64; 2],
+        rate: [f64; 2],
+        want_jacobian: bool,
+        out: &mut FilmStep,
+        info: &mut MechanismInfo,
+    ) -> Result<([f64; 2], Configuration, [f64; 2], JointForce), MechanismError> {
+        let (model, t, c) = (self.model, self.t1, self.model.c);
+        let (rf, state, feeds) = b;
+        let e = [c * eps[0], c * eps[1]];
+        let ed = [c * rate[0], c * rate[1]];
+        let r = eps[0].hypot(eps[1]);
+        let fe = if r > model.film_limit {
+            [eps[0] * model.film_limit / r, eps[1] * model.film_limit / r]
+        } else {
+            eps
+        };
+        let feeds = *feeds;
+        let mut jac_slot = None;
+        let res = model.eps_acceleration(t, eps, rate, |k| {
+            let cond = OperatingConditions {
+                journal_speed: k.rod_rate,
+                bearing_speed: 0.0,
+                feed_pressures: vec![0.0; feeds],
+            };
+            info.film_steps += 1;
+            let (resp, next) = rf
+                .step(state, fe, self.dt, &cond)
+                .map_err(|e| e.to_string())?;
+            out.state = Some(next);
+            out.fields = resp.fields;
+            let (f, torque) = (resp.film_force, resp.friction_torque_journal);
+            let blended = model.blend(e, ed, k.rod_rate, self.impact, || Ok((f, torque)))?;
+            if want_jacobian && blended.weight < 1.0 {
+                jac_slot = rf.force_jacobian().map(|j| j.map_err(|e| e.to_string()));
+            }
+            Ok(blended)
+        })?;
+        if let Some(j) = jac_slot {
+            out.jacobian = Some(j.map_err(|reason| MechanismError::Film {
+                time: t,
+                crank_angle_deg: model.crank_deg(t),
+                eccentricity_ratio: r,
+                reason,
+            })?);
+        }
+        Ok(res)
+    }
+
+    /// Jacobian of the step's residual with respect to ε^{n+1} (module docs): differences of the
+    /// residual with the Reynolds film's force frozen (the closed form evaluated), plus the
+    /// film's exact ∂F/∂ε through ∂g/∂F.
+    fn jacobian(
+        &self,
+        film: &Film,
+        eps: [f64; 2],
+        trial: &Trial,
+    ) -> Result<[[f64; 2]; 2], MechanismError> {
+        // The trial's film force and torque before the blend, for the frozen evaluation.
+        let frozen = match film {
+            Film::Closed(_) => None,
+            Film::Reynolds(_) => Some((trial.force.film, trial.force.film_torque)),
+        };
+        let r0 = self.residual(film, eps, frozen)?;
+        let mut jac = [[0.0; 2]; 2];
+        for j in 0..2 {
+            let h = 1e-7 * eps[0].hypot(eps[1]).max(1e-3);
+            let mut ep = eps;
+            ep[j] += h;
+            let r1 = self.residual(film, ep, frozen)?;
+            for i in 0..2 {
+                jac[i][j] = (r1[i] - r0[i]) / h;
+            }
+        }
+        if let (Some(jf), Some((f0, torque0))) = (trial.film_jacobian, frozen) {
+            // − ∂g/∂F · (1 − s) ∂F_film/∂ε; ∂g/∂F by differences (g is linear in F).
+            let scale = f0[0].hypot(f0[1]).max(1.0);
+            let mut dgdf = [[0.0; 2]; 2];
+            for j in 0..2 {
+                let mut f1 = f0;
+                f1[j] += scale * 1e-6;
+                let r1 = self.residual(film, eps, Some((f1, torque0)))?;
+                for i in 0..2 {
+                    // r = acc − g: ∂r/∂F = −∂g/∂F (the blend's (1 − s) is inside).
+                    dgdf[i][j] = (r1[i] - r0[i]) / (scale * 1e-6);
+                }
+            }
+            for i in 0..2 {
+                for j in 0..2 {
+                    jac[i][j] += dgdf[i][0] * jf[0][j] + dgdf[i][1] * jf[1][j];
+                }
+            }
+        }
+        Ok(jac)
+    }
+
+    /// The residual at ε with the film force and torque given (frozen) or the closed form
+    /// evaluated, for the Jacobian's differences.
+    fn residual(
+        &self,
+        film: &Film,
+        eps: [f64; 2],
+        frozen: Option<([f64; 2], f64)>,
+    ) -> Result<[f64; 2], MechanismError> {
+        let (model, c, impact) = (self.model, self.model.c, self.impact);
+        let (rate, acc_bdf) = self.rates(eps);
+        let e = [c * eps[0], c * eps[1]];
+        let ed = [c * rate[0], c * rate[1]];
+        let (g, ..) = model.eps_acceleration(self.t1, eps, rate, |k| match (film, frozen) {
             (_, Some(f)) => model.blend(e, ed, k.rod_rate, impact, || Ok(f)),
             (Film::Closed(m), None) => model.blend(e, ed, k.rod_rate, impact, || {
                 model.closed_film(*m, eps, rate, k.rod_rate)
@@ -1396,43 +1600,16 @@ fn bdf2_jacobian(
             (Film::Reynolds(_), None) => Err("Reynolds film needs a frozen force".to_string()),
         })?;
         Ok([acc_bdf[0] - g[0], acc_bdf[1] - g[1]])
-    };
-    // The trial's film force and torque before the blend, for the frozen evaluation.
-    let frozen = match film {
-        Film::Closed(_) => None,
-        Film::Reynolds(_) => Some((trial.force.film, trial.force.film_torque)),
-    };
-    let r0 = residual(eps, frozen)?;
-    let mut jac = [[0.0; 2]; 2];
-    for j in 0..2 {
-        let h = 1e-7 * eps[0].hypot(eps[1]).max(1e-3);
-        let mut ep = eps;
-        ep[j] += h;
-        let r1 = residual(ep, frozen)?;
-        for i in 0..2 {
-            jac[i][j] = (r1[i] - r0[i]) / h;
-        }
     }
-    if let (Some(jf), Some((f0, torque0))) = (trial.film_jacobian, frozen) {
-        // − ∂g/∂F · (1 − s) ∂F_film/∂ε; ∂g/∂F by differences (g is linear in F).
-        let scale = f0[0].hypot(f0[1]).max(1.0);
-        let mut dgdf = [[0.0; 2]; 2];
-        for j in 0..2 {
-            let mut f1 = f0;
-            f1[j] += scale * 1e-6;
-            let r1 = residual(eps, Some((f1, torque0)))?;
-            for i in 0..2 {
-                // r = acc − g: ∂r/∂F = −∂g/∂F (the blend's (1 − s) is inside).
-                dgdf[i][j] = (r1[i] - r0[i]) / (scale * 1e-6);
-            }
-        }
-        for i in 0..2 {
-            for j in 0..2 {
-                jac[i][j] += dgdf[i][0] * jf[0][j] + dgdf[i][1] * jf[1][j];
-            }
-        }
-    }
-    Ok(jac)
+}
+
+/// What one Reynolds film step of a trial leaves besides its force: the film's state at t1, its
+/// fields (when captured) and its Jacobian (when asked for and the film acts).
+#[derive(Default)]
+struct FilmStep {
+    state: Option<FilmState>,
+    fields: Option<FilmFields>,
+    jacobian: Option<[[f64; 2]; 2]>,
 }
 
 #[cfg(test)]
