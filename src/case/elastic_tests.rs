@@ -6,12 +6,16 @@ use jbearing_solvers::elastic::ElasticParams;
 use std::path::Path;
 
 fn repository_case(name: &str) -> Case {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases").join(name);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("cases")
+        .join(name);
     Case::from_file(&path).unwrap()
 }
 
 fn gap_warned(case: &Case) -> bool {
-    case.warnings.iter().any(|w| w.key == "elastic.gap_tolerance")
+    case.warnings
+        .iter()
+        .any(|w| w.key == "elastic.gap_tolerance")
 }
 
 /// The compressor rod's elastic case leaves the key out: its dynamic film runs 1e-8 c (what
