@@ -29,8 +29,8 @@ use jbearing::case::{Case, CaseError, CaseWarning};
 use jbearing::output::{CaseReport, Method, MethodResult, ParameterValue};
 use jbearing::run::{RunError, RunObserver};
 use jbearing_solvers::reynolds::{
-    GridParams, Groove, OperatingConditions, ReynoldsError, ReynoldsParams, ReynoldsSolver,
-    SupplyModel,
+    FilmSolution, GridParams, Groove, OperatingConditions, ReynoldsError, ReynoldsParams,
+    ReynoldsSolver, SteadyLoadInfo, SupplyModel,
 };
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
@@ -536,34 +536,24 @@ fn steady<'py>(
     supply_line: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let n_grooves = grooves.len();
+    let grid = {
+        let default = GridParams::for_length_ratio(length / (2.0 * radius));
+        GridParams {
+            n_theta: n_theta.unwrap_or(default.n_theta),
+            n_z: n_z.unwrap_or(default.n_z),
+        }
+    };
     let params = ReynoldsParams {
         bulk_modulus,
         cavitation_pressure,
         ambient_pressure,
-        grooves: grooves
-            .into_iter()
-            .map(
-                |(center_angle, center_z, angular_width, axial_width)| Groove {
-                    center_angle,
-                    center_z,
-                    angular_width,
-                    axial_width,
-                    cutoff_film_fraction: 0.01,
-                },
-            )
-            .collect(),
+        grooves: steady_grooves(grooves),
         supply: if supply_line {
             SupplyModel::AxialLineAtMaxGap
         } else {
             SupplyModel::Grooves
         },
-        grid: {
-            let default = GridParams::for_length_ratio(length / (2.0 * radius));
-            GridParams {
-                n_theta: n_theta.unwrap_or(default.n_theta),
-                n_z: n_z.unwrap_or(default.n_z),
-            }
-        },
+        grid,
         ..ReynoldsParams::plain(radius, length, clearance, viscosity)
     };
     let conditions = OperatingConditions {
@@ -576,6 +566,34 @@ fn steady<'py>(
         solver.solve_steady_load([load_x, load_y], &conditions)
     });
     let (sol, info) = result.map_err(|e| reynolds_error(py, &e))?;
+    steady_dict(py, &sol, &info, clearance)
+}
+
+/// The steady solve's grooves from `(center_angle [rad], center_z [m], angular_width [rad],
+/// axial_width [m])` tuples, each with the library's 1 % cut-off film fraction.
+fn steady_grooves(grooves: Vec<(f64, f64, f64, f64)>) -> Vec<Groove> {
+    grooves
+        .into_iter()
+        .map(
+            |(center_angle, center_z, angular_width, axial_width)| Groove {
+                center_angle,
+                center_z,
+                angular_width,
+                axial_width,
+                cutoff_film_fraction: 0.01,
+            },
+        )
+        .collect()
+}
+
+/// The steady solve's answer as the dict `steady` returns: the Newton's report, the film's
+/// scalars and its (θ, z) fields as little-endian f64 bytes.
+fn steady_dict<'py>(
+    py: Python<'py>,
+    sol: &FilmSolution,
+    info: &SteadyLoadInfo,
+    clearance: f64,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let eps = info.eccentricity_ratio;
     d.set_item("eccentricity_ratio", (eps[0], eps[1]))?;
