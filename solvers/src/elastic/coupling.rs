@@ -71,8 +71,10 @@ pub struct ElasticParams {
 impl ElasticParams {
     /// Steel shaft and housing, the shaft hole at 0.4 R, a square housing of half-width 2R,
     /// 240 nodes around; tolerance 1e-5 c (2.5 nm for c = 0.25 mm) for the steady solve and
-    /// 1e-8 c for the dynamic film (what the inverse solver's default force tolerance 1e-6
-    /// needs, [`ElasticParams::dynamic_gap_tolerance_for`]), at most 200 iterations, ω₀ = 0.1,
+    /// 1e-8 c for the dynamic film (what a Newton force tolerance of 1e-6 needs — the
+    /// application's default `solver.force_tolerance`; [`crate::inverse::InverseParams`]
+    /// defaults to 1e-4, for which it is tighter than needed:
+    /// [`ElasticParams::dynamic_gap_tolerance_for`]), at most 200 iterations, ω₀ = 0.1,
     /// ω ≥ 0.005.
     pub fn steel(radius: f64) -> Self {
         Self {
@@ -100,8 +102,8 @@ impl ElasticParams {
     /// The gap tolerance (fraction of c) a dynamic run needs under a Newton force tolerance
     /// `force_tolerance` (fraction of the load): a gap error δ moves a film of thickness h_min
     /// by δ/h_min, so δ ≤ 0.1 · force_tolerance · h_min, with h_min =
-    /// [`ElasticParams::DYNAMIC_THINNEST_FILM`] c — 1e-8 c at the default 1e-6, the value the
-    /// compressor rod's dynamic run validates (docs/validation.md).
+    /// [`ElasticParams::DYNAMIC_THINNEST_FILM`] c — 1e-8 c at the application's default 1e-6,
+    /// the value the compressor rod's dynamic run validates (docs/validation.md).
     pub fn dynamic_gap_tolerance_for(force_tolerance: f64) -> f64 {
         0.1 * force_tolerance * Self::DYNAMIC_THINNEST_FILM
     }

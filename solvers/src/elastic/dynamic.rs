@@ -53,8 +53,8 @@
 //!
 //! The gap tolerance bounds the force noise the Newton sees, and it must sit well below what
 //! the Newton needs: a gap error δ moves a film of thickness h_min by δ/h_min, so the Newton
-//! tolerance (1e-6 of the load by default) at h_min ≈ 0.16 c needs δ ≲ 1.6e-7 c, and a tenth of
-//! that, 1e-8 c, is the tolerance to use. Why a tenth, measured on the compressor rod
+//! tolerance (1e-6 of the load, the application's default) at h_min ≈ 0.16 c needs
+//! δ ≲ 1.6e-7 c, and a tenth of that, 1e-8 c, is the tolerance to use. Why a tenth, measured on the compressor rod
 //! ([`FilmModel::step_diagnostics`] of every stalled step, logged by the application): a trial
 //! starts from the gap of the Newton's previous trial, and near the root the Newton's
 //! corrections move ε so little that this gap already satisfies the tolerance — the trial is

@@ -479,27 +479,34 @@ mod tests {
             .unwrap();
     }
 
-    #[test]
-    fn elastic_rows_carry_the_summaries_and_the_run_statistics() {
-        let dir = TempDir::new("elastic");
-        let (rigid, elastic) = (ELASTIC_CASES[0].0, ELASTIC_CASES[1].0);
+    /// The rigid rod run's summary and CASE.h5 statistics in `dir`: h_min 3.821 µm, 166.8 s
+    /// over 12 cycles, 0 stalls, 12 782 film steps, 1 567 Jacobians, periodic.
+    fn write_rigid_run(dir: &Path) {
+        let rigid = ELASTIC_CASES[0].0;
         std::fs::write(
-            dir.0.join(format!("{rigid}_summary.csv")),
+            dir.join(format!("{rigid}_summary.csv")),
             summary("3.821e-6", "ok"),
         )
         .unwrap();
-        std::fs::write(
-            dir.0.join(format!("{elastic}_summary.csv")),
-            summary("4.0102e-6", "ok"),
-        )
-        .unwrap();
         run_h5(
-            &dir.0.join(format!("{rigid}.h5")),
+            &dir.join(format!("{rigid}.h5")),
             166.8,
             [12, 0, 12782, 1567],
             true,
             0.0,
         );
+    }
+
+    #[test]
+    fn elastic_rows_carry_the_summaries_and_the_run_statistics() {
+        let dir = TempDir::new("elastic");
+        let elastic = ELASTIC_CASES[1].0;
+        write_rigid_run(&dir.0);
+        std::fs::write(
+            dir.0.join(format!("{elastic}_summary.csv")),
+            summary("4.0102e-6", "ok"),
+        )
+        .unwrap();
         run_h5(
             &dir.0.join(format!("{elastic}.h5")),
             901.2,
@@ -539,19 +546,8 @@ mod tests {
     #[test]
     fn a_missing_elastic_run_is_an_error_naming_the_file() {
         let dir = TempDir::new("elastic-missing");
-        let (rigid, elastic) = (ELASTIC_CASES[0].0, ELASTIC_CASES[1].0);
-        std::fs::write(
-            dir.0.join(format!("{rigid}_summary.csv")),
-            summary("3.821e-6", "ok"),
-        )
-        .unwrap();
-        run_h5(
-            &dir.0.join(format!("{rigid}.h5")),
-            166.8,
-            [12, 0, 12782, 1567],
-            true,
-            0.0,
-        );
+        let elastic = ELASTIC_CASES[1].0;
+        write_rigid_run(&dir.0);
         // The elastic run's summary is missing.
         let err = format!("{:#}", elastic_rows(&dir.0).unwrap_err());
         assert!(
