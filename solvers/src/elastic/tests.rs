@@ -422,44 +422,74 @@ fn dynamic_conditions() -> crate::reynolds::OperatingConditions {
     }
 }
 
-/// The dynamic deformable film between its limits and in time. (a) A structure 1e4 times
-/// stiffer than steel (gaps ~4e-11 m against a 50 μm clearance, solved to the dynamic default
-/// 1e-8 c) steps as the rigid film: from the fifth step on the forces agree to 1e-5 of the load
-/// (the gap's relative size, 2e-6 measured, with margin); the first steps carry the squeeze of
-/// the deformation's onset from the unloaded state (g from 0 to 3.4e-11 m in 0.1 ms, a velocity
-/// ~5e-5 of the wedge's ωc/2: 1.2e-4 of the load measured at the first step, 1.1e-5 at the
-/// fourth; asserted 2e-4).
-/// (b) A steel structure, the journal held at ε from a film at rest: the coupled step converges
-/// in Δt (the differences of the force at 3 ms between Δt = 0.2, 0.1, 0.05 ms, 1.27e-2 and
-/// 6.1e-3 N of 1721 N, fall by 2.06: first order, asserted > 1.6), and every accepted state's
-/// gap is C p̄ of its own pressure to the tolerance. The rigid film in the same setup falls by
-/// 6.1; so the coupled step has an O(Δt) error of ~7e-6 of the load at 0.2 ms here, not
-/// located yet (issue 15). Until 2026-11-27 this test ran at 1e-5 c and measured 15.6, but its
-/// first difference (0.11 N) was the gap tolerance's noise, 9 times the converged one.
+/// The dynamic deformable film between its limits and in time.
+///
+/// (a) The stiff-structure limit: structures 1e4 and 1e5 times stiffer than steel (gaps
+/// ~4e-11 and ~4e-12 m against a 50 μm clearance, solved to 1e-12 c so that the gap's own
+/// tolerance is 1e-5 of the smaller one) step as the rigid film, and at every step — the onset
+/// included — their differences from it are first order in the compliance: the 1e5 structure's
+/// force difference is a tenth of the 1e4 structure's (measured 0.0999–0.1004 per component
+/// over 20 steps; asserted to 2 % of the vector). From the fifth step on the 1e4 structure's
+/// forces agree with the rigid film's to 1e-5 of the load (the static gap's effect, 2.05e-6
+/// measured). The first steps carry more, the squeeze of the deformation's onset — from the
+/// film at rest the rigid pressure rises within the first step, so g jumps from 0 to C p̄
+/// (~3.4e-11 m in 0.1 ms) and the rigid film's own early transient moves it on: 1.3e-4 of the
+/// load at step 1, 2.0e-5 / 1.2e-5 / 7.9e-6 at steps 2–4 — and that part is ∝ C as well
+/// (the ratio above), so it is the coupled physics of this start, not an error that does not
+/// vanish with the compliance.
+///
+/// (b) A steel structure, the journal held at ε from a film at rest: the coupled step
+/// converges in Δt at second order. The film at rest is loaded within a relaxation time
+/// τ = 12 μ C L²/h³ of the structure and the film's squeeze (measured: the difference of the
+/// force from its 4 ms value falls 446 → 177 → 80 → 35 N over successive 0.2 ms, τ ≈ 0.24 ms),
+/// and the force at 3 ms (12 τ) carries the scheme's error of that decay, which is asymptotic
+/// only for Δt ≪ τ: the differences between Δt = 0.1, 0.05, 0.025 ms (gap to 1e-10 c, below
+/// their size: the default 1e-8 c leaves ~1e-4 N of noise) are 5.86e-3 and 1.44e-3 N of
+/// 1721 N, ratio 4.06 (asserted > 3). With Δt = 0.2 ms (Δt/τ ≈ 0.8) the ratio was 2.2 — what
+/// issue 15 had recorded as "first order"; backward Euler's ratios over the same four steps are
+/// 4.28 / 3.24, not yet its asymptotic 2 either, while the rigid film (no τ) falls by 6.1 / 3.8.
+/// Every accepted state's gap is C p̄ of its own pressure to the tolerance.
 #[test]
 fn dynamic_film_between_its_limits_and_in_time() {
     use crate::inverse::{FilmModel, ReynoldsFilm};
     let eps = [0.5, -0.4];
-    let (p, stiff) = dynamic_setup(210e9 * 1e4);
-    let mut rigid = ReynoldsFilm::new(p.clone()).unwrap();
-    let mut s = rigid.initial_state(eps);
-    let mut elastic = ElasticFilm::new(p.clone(), &stiff).unwrap();
-    let mut es = elastic.initial_state(eps);
-    for step in 0..20 {
-        let (r, n) = rigid.step(&s, eps, 1e-4, &dynamic_conditions()).unwrap();
-        let (e, m) = elastic.step(&es, eps, 1e-4, &dynamic_conditions()).unwrap();
-        let w = r.film_force[0].hypot(r.film_force[1]);
-        for i in 0..2 {
-            let d = (e.film_force[i] - r.film_force[i]).abs();
-            let bound = if step < 4 { 2e-4 } else { 1e-5 };
-            assert!(d < bound * w, "step {step}: {d:e} of {w:e}");
+    let mut differences = Vec::new();
+    for scale in [1e4, 1e5] {
+        let (p, stiff) = dynamic_setup(210e9 * scale);
+        let mut rigid = ReynoldsFilm::new(p.clone()).unwrap();
+        let mut s = rigid.initial_state(eps);
+        let mut elastic = ElasticFilm::new(p.clone(), &stiff).unwrap();
+        elastic.tolerance = 1e-12 * p.clearance;
+        let mut es = elastic.initial_state(eps);
+        let mut per_step = Vec::new();
+        for step in 0..20 {
+            let (r, n) = rigid.step(&s, eps, 1e-4, &dynamic_conditions()).unwrap();
+            let (e, m) = elastic.step(&es, eps, 1e-4, &dynamic_conditions()).unwrap();
+            let w = r.film_force[0].hypot(r.film_force[1]);
+            let d = [
+                (e.film_force[0] - r.film_force[0]) / w,
+                (e.film_force[1] - r.film_force[1]) / w,
+            ];
+            if scale == 1e4 && step >= 4 {
+                assert!(d[0].hypot(d[1]) < 1e-5, "step {step}: {d:?} of the load");
+            }
+            per_step.push(d);
+            (s, es) = (n, m);
         }
-        (s, es) = (n, m);
+        differences.push(per_step);
+    }
+    for (step, (d4, d5)) in differences[0].iter().zip(&differences[1]).enumerate() {
+        let off = (d5[0] - 0.1 * d4[0]).hypot(d5[1] - 0.1 * d4[1]);
+        assert!(
+            off <= 0.02 * 0.1 * d4[0].hypot(d4[1]),
+            "step {step}: 1e5 x steel {d5:?}, 1e4 x steel {d4:?}"
+        );
     }
     let (p, steel) = dynamic_setup(210e9);
     let mut at_end = Vec::new();
-    for dt in [2e-4f64, 1e-4, 5e-5] {
+    for dt in [1e-4f64, 5e-5, 2.5e-5] {
         let mut film = ElasticFilm::new(p.clone(), &steel).unwrap();
+        film.tolerance = 1e-10 * p.clearance;
         film.set_capture_fields(true);
         let mut state = film.initial_state(eps);
         let mut force = [0.0; 2];
@@ -483,7 +513,128 @@ fn dynamic_film_between_its_limits_and_in_time() {
         "forces at 3 ms: {at_end:?}; differences {e1:e}, {e2:e}, ratio {}",
         e1 / e2
     );
-    assert!(e1 / e2 > 1.6, "{e1} / {e2}");
+    assert!(e1 / e2 > 3.0, "{e1} / {e2}");
+}
+
+/// The content of each old level carries that level's own gap, under the same difference
+/// formula (what the coupled BDF2 step's squeeze term needs): a film stepped by variable BDF2
+/// steps (±30 %) under a prescribed moving gap g(θ, t) = 2 μm (1 + cos(θ − 1)) sin(3000 t),
+/// journal held at ε, closes its own discrete balance
+/// (a₀ cⁿ⁺¹ − a₁ cⁿ + a₂ cⁿ⁻¹)/Δt = supply − leakage, with c = ∫ (h₀ + gⁿ) φ, to the solve
+/// tolerance from the second step on (measured 6.9e-11 of the leakage; asserted 1e-8 as the
+/// rigid film's `bdf2_steps_balance_mass_with_variable_steps`). A gap missing from an old level
+/// (or entering by another formula) would leave a residual of the order of its content's rate,
+/// which here reaches 0.97 of the leakage (asserted > 0.1).
+#[test]
+fn bdf2_balance_holds_with_a_moving_gap() {
+    use crate::reynolds::{FilmDeformation, ReynoldsSolver, StepInput, TimeScheme};
+    let eps = [0.5, -0.4];
+    let (mut p, _) = dynamic_setup(210e9);
+    p.time_scheme = TimeScheme::Bdf2;
+    let mut s = ReynoldsSolver::new(p).unwrap();
+    let gap = |t: f64| {
+        let v = (0..48)
+            .map(|k| {
+                let th = k as f64 * std::f64::consts::TAU / 48.0;
+                2e-6 * (1.0 + (th - 1.0).cos()) * (3000.0 * t).sin()
+            })
+            .collect();
+        FilmDeformation::new(v).unwrap()
+    };
+    let mut state = s.initial_state(eps);
+    state.deformation = Some(gap(0.0));
+    let mut history: Vec<(f64, f64)> = Vec::new(); // (content, dt)
+    let (mut t, mut worst, mut moved) = (0.0, 0.0f64, 0.0f64);
+    for n in 1..=40 {
+        let dt = 5e-5 * [1.0, 1.3, 0.7, 1.0][n % 4];
+        t += dt;
+        s.set_deformation(Some(gap(t)));
+        let input = StepInput {
+            eccentricity_ratio: eps,
+            dt,
+            conditions: dynamic_conditions(),
+        };
+        let (sol, next) = s.solve_step(&state, &input).unwrap();
+        let net = sol.supply_flow.iter().sum::<f64>() - sol.side_leakage[0] - sol.side_leakage[1];
+        let scale = sol.side_leakage[0] + sol.side_leakage[1];
+        if let [.., (c_prev, _), (c_now, dt_prev)] = history[..] {
+            let (a0, a1, a2) = TimeScheme::bdf2_coefficients(dt / dt_prev);
+            let rate = (a0 * sol.film_content - a1 * c_now + a2 * c_prev) / dt;
+            worst = worst.max(((rate - net) / scale).abs());
+        }
+        if let [.., (c_now, _)] = history[..] {
+            moved = moved.max(((sol.film_content - c_now) / dt / scale).abs());
+        }
+        history.push((sol.film_content, dt));
+        state = next;
+    }
+    assert!(moved > 0.1, "the gap must move the content: {moved:e}");
+    eprintln!("moved {moved:e} worst {worst:e}");
+    assert!(worst < 1e-8, "worst BDF2 step balance {worst:e}");
+}
+
+/// Step halving on the coupled film, each scheme, as the rigid film's
+/// `step_halving_gives_each_schemes_order_on_the_reynolds_film`: a journal whirling and
+/// breathing (ε = 0.5 + 0.1 sin 2ωt at ω = 100 rad/s, from the film at rest), steel structure
+/// at the default gap tolerance 1e-8 c, the force after a quarter whirl (15.7 ms, 65 times the
+/// structure's relaxation time τ ≈ 0.24 ms of the test above, so the start has decayed) with
+/// Δt, Δt/2, Δt/4. The observed order log₂(|F_Δt − F_Δt/2| / |F_Δt/2 − F_Δt/4|) is the
+/// scheme's: backward Euler 1 and BDF2 2 within 0.35 (40 / 80 / 160 steps: measured 0.90 and
+/// 1.95; 80 / 160 / 320: 0.99 and 2.05), Crank–Nicolson at least 2 − 0.35 (80 / 160 / 320
+/// steps: 1.86; at 40 / 80 / 160 it is 1.70 and the rigid film's own 1.48 — its
+/// pre-asymptotic ringing, as in the rigid test). Measured at 1e-10 c the orders are the same
+/// to the printed digits. Here the deformation moves the force by 0.34 N of 147 N, so this test
+/// guards each scheme's path through the coupled step; the coupling's own time error is the
+/// dominant one in the held-ε test above (the structure's relaxation, 35 N of 1721 N).
+#[test]
+fn coupled_step_halving_gives_each_schemes_order() {
+    use crate::inverse::FilmModel;
+    use crate::reynolds::TimeScheme;
+    let whirl = 100.0;
+    let t_end = 2.0 * std::f64::consts::PI / whirl / 4.0;
+    let eps = |t: f64| {
+        let m = 0.5 + 0.1 * (2.0 * whirl * t).sin();
+        [m * (whirl * t).cos(), m * (whirl * t).sin()]
+    };
+    let (p0, steel) = dynamic_setup(210e9);
+    for (scheme, order, steps) in [
+        (TimeScheme::BackwardEuler, 1.0, 40),
+        (TimeScheme::Bdf2, 2.0, 40),
+        (TimeScheme::CrankNicolson, 2.0, 80),
+    ] {
+        let mut p = p0.clone();
+        p.time_scheme = scheme;
+        let force = |steps: usize| {
+            let mut film = ElasticFilm::new(p.clone(), &steel).unwrap();
+            let mut state = film.initial_state(eps(0.0));
+            let dt = t_end / steps as f64;
+            let mut f = [0.0; 2];
+            for n in 1..=steps {
+                let (r, next) = film
+                    .step(&state, eps(n as f64 * dt), dt, &dynamic_conditions())
+                    .unwrap();
+                f = r.film_force;
+                state = next;
+            }
+            f
+        };
+        let (f1, f2, f4) = (force(steps), force(2 * steps), force(4 * steps));
+        let d12 = (f1[0] - f2[0]).hypot(f1[1] - f2[1]);
+        let d24 = (f2[0] - f4[0]).hypot(f2[1] - f4[1]);
+        let observed = (d12 / d24).log2();
+        eprintln!(
+            "{scheme:?}: |F| {:.2} N, observed order {observed:.2}",
+            f4[0].hypot(f4[1])
+        );
+        let in_range = match scheme {
+            TimeScheme::CrankNicolson => observed > order - 0.35,
+            _ => (observed - order).abs() < 0.35,
+        };
+        assert!(
+            in_range,
+            "{scheme:?}: observed order {observed}, expected {order}"
+        );
+    }
 }
 
 /// The coupled film's exact dF/dε ([`ElasticFilm`]'s force Jacobian: the film's ∂F/∂ε at fixed
