@@ -14,17 +14,18 @@
 //! content h φ of the old and new levels, each with its own g (the time step of
 //! [`crate::reynolds::ReynoldsSolver::solve_step`] with a deformation).
 //!
-//! Time accuracy: the coupled step is the film's scheme (backward Euler, BDF2 or
-//! Crank–Nicolson, [`crate::reynolds::TimeScheme`]) applied to the content (h₀ + g) φ, each
-//! old level with its own g, and has the scheme's order (tests `bdf2_balance_holds_with_a_moving_gap`:
-//! the variable-step BDF2 balance of a film under a prescribed moving gap closes to 6.9e-11 of the
-//! leakage; `coupled_step_halving_gives_each_schemes_order`: observed orders 0.90 / 1.95 / 1.86
-//! on a whirling journal). The gap adds a time scale of its own: a pressure change is taken up by
-//! the structure and the film's squeeze together within τ ≈ 12 μ C L²/h³ (≈ 0.24 ms on the unit
-//! tests' steel bearing, measured from the decay of a film loaded from rest), and the order shows
-//! only for Δt well below τ — the ratio 2.2 of the force differences at Δt = 0.2 / 0.1 / 0.05 ms
-//! (Δt/τ ≈ 0.8 at the coarsest), recorded in issue 15 as first order, is 4.06 at
-//! 0.1 / 0.05 / 0.025 ms (`dynamic_film_between_its_limits_and_in_time`).
+//! Time accuracy: the coupled step is the film's scheme (backward Euler, BDF2 or Crank–Nicolson,
+//! [`crate::reynolds::TimeScheme`]) applied to the content (h₀ + g) φ, each old level with its own
+//! g, and has the scheme's order (tests `bdf2_balance_holds_with_a_moving_gap`: the variable-step
+//! BDF2 balance of a film under a prescribed moving gap closes to 6.9e-11 of the leakage;
+//! `coupled_step_halving_gives_each_schemes_order`: observed orders 0.90 / 1.95 / 1.86 on a
+//! whirling journal). The gap adds a time scale of its own: a pressure change is taken up by the
+//! structure and the film's squeeze together within τ, of the order of 12 μ C L²/h³ (C the
+//! compliance per pressure, h the film; 0.24 ms on the unit tests' steel bearing, measured from the
+//! decay of a film loaded from rest), and the order shows only for Δt well below τ — the ratio 2.06
+//! (2.2 with the gap to 1e-10 c) of the force differences at Δt = 0.2 / 0.1 / 0.05 ms (Δt/τ ≈ 0.8
+//! at the coarsest), recorded in issue 15 as first order, is 4.06 at 0.1 / 0.05 / 0.025 ms
+//! (`dynamic_film_between_its_limits_and_in_time`).
 //!
 //! Every trial film step of the inverse solver's Newton on ε solves its g by the steady
 //! solve's Aitken-relaxed fixed point (`coupling`), started from the g of the last trial from

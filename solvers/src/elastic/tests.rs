@@ -438,17 +438,17 @@ fn dynamic_conditions() -> crate::reynolds::OperatingConditions {
 /// (the ratio above), so it is the coupled physics of this start, not an error that does not
 /// vanish with the compliance.
 ///
-/// (b) A steel structure, the journal held at ε from a film at rest: the coupled step
-/// converges in Δt at second order. The film at rest is loaded within a relaxation time
-/// τ = 12 μ C L²/h³ of the structure and the film's squeeze (measured: the difference of the
-/// force from its 4 ms value falls 446 → 177 → 80 → 35 N over successive 0.2 ms, τ ≈ 0.24 ms),
-/// and the force at 3 ms (12 τ) carries the scheme's error of that decay, which is asymptotic
-/// only for Δt ≪ τ: the differences between Δt = 0.1, 0.05, 0.025 ms (gap to 1e-10 c, below
-/// their size: the default 1e-8 c leaves ~1e-4 N of noise) are 5.86e-3 and 1.44e-3 N of
-/// 1721 N, ratio 4.06 (asserted > 3). With Δt = 0.2 ms (Δt/τ ≈ 0.8) the ratio was 2.2 — what
-/// issue 15 had recorded as "first order"; backward Euler's ratios over the same four steps are
-/// 4.28 / 3.24, not yet its asymptotic 2 either, while the rigid film (no τ) falls by 6.1 / 3.8.
-/// Every accepted state's gap is C p̄ of its own pressure to the tolerance.
+/// (b) A steel structure, the journal held at ε from a film at rest: the coupled step converges in
+/// Δt at second order. The film at rest is loaded within a relaxation time τ (of the order of 12 μ
+/// C L²/h³, C the compliance per pressure) of the structure and the film's squeeze (measured: the
+/// difference of the force from its 4 ms value falls 446 → 177 → 80 → 35 N over successive 0.2 ms,
+/// τ ≈ 0.24 ms), and the force at 3 ms (12 τ) carries the scheme's error of that decay, which is
+/// asymptotic only for Δt ≪ τ: the differences between Δt = 0.1, 0.05, 0.025 ms (gap to 1e-10 c,
+/// below their size: the default 1e-8 c leaves ~1e-4 N of noise) are 5.86e-3 and 1.44e-3 N of 1721
+/// N, ratio 4.06 (asserted > 3). With Δt = 0.2 ms (Δt/τ ≈ 0.8) the ratio was 2.2 — what issue 15
+/// had recorded as "first order"; backward Euler's ratios over the same four steps are 4.28 / 3.24,
+/// not yet its asymptotic 2 either, while the rigid film (no τ) falls by 6.1 / 3.8. Every accepted
+/// state's gap is C p̄ of its own pressure to the tolerance.
 #[test]
 fn dynamic_film_between_its_limits_and_in_time() {
     use crate::inverse::{FilmModel, ReynoldsFilm};
