@@ -549,6 +549,9 @@ pub struct ReynoldsSolver {
     /// Gap change of elastic surfaces added to the rigid film (steady solves and time steps;
     /// a step's old level takes the gap its state carries).
     deformation: Option<FilmDeformation>,
+    /// The tolerance of the solve under way when [`ReynoldsSolver::solve_step_to`] loosened
+    /// it (None: `params.tolerance`).
+    step_tolerance: Option<f64>,
 }
 
 /// The deformed film's thinnest node (the rigid c(1 − |ε|) of `film_solution` is no longer it).
@@ -709,6 +712,7 @@ impl ReynoldsSolver {
             sensitivity: [Vec::new(), Vec::new()],
             sensitivity_for: None,
             deformation: None,
+            step_tolerance: None,
         })
     }
 
@@ -796,6 +800,36 @@ impl ReynoldsSolver {
     /// Newton iterate of the inverse solver) needs fewer switch and Krylov iterations. The
     /// answer is the same discrete solution to `tolerance`; `start` must be of the same grid.
     pub fn solve_step_from(
+        &mut self,
+        state: &FilmState,
+        input: &StepInput,
+        start: Option<&FilmState>,
+    ) -> Result<(FilmSolution, FilmState), ReynoldsError> {
+        self.solve_step_to(state, input, start, self.params.tolerance)
+    }
+
+    /// [`solve_step_from`](Self::solve_step_from) to a looser relative mass residual
+    /// `tolerance` (≥ [`ReynoldsParams::tolerance`], which a smaller or non-finite value
+    /// means), for a caller that needs this step's answer only roughly (the inverse solver's
+    /// Newton iterates far from their answer, [`crate::inverse::ReynoldsFilm`]). Every
+    /// semismooth Newton solve of the step, and its convergence test, then use `tolerance`;
+    /// the force Jacobian of the step is the derivative at that answer.
+    pub fn solve_step_to(
+        &mut self,
+        state: &FilmState,
+        input: &StepInput,
+        start: Option<&FilmState>,
+        tolerance: f64,
+    ) -> Result<(FilmSolution, FilmState), ReynoldsError> {
+        let loose = tolerance > self.params.tolerance && tolerance.is_finite();
+        self.step_tolerance = loose.then_some(tolerance);
+        let answer = self.solve_step_relaxed(state, input, start);
+        self.step_tolerance = None;
+        answer
+    }
+
+    /// [`solve_step_to`](Self::solve_step_to) with its tolerance set.
+    fn solve_step_relaxed(
         &mut self,
         state: &FilmState,
         input: &StepInput,
@@ -1655,6 +1689,7 @@ impl ReynoldsSolver {
         mut g: Vec<f64>,
         time: TimeTerm,
     ) -> Result<(Vec<f64>, Vec<f64>, NewtonCounts, f64), ReynoldsError> {
+        let tolerance = self.step_tolerance.unwrap_or(self.params.tolerance);
         let mut frozen = self.frozen_switch(h, speed, time);
         let p = frozen.params;
         let grid = frozen.level.grid;
@@ -1665,7 +1700,7 @@ impl ReynoldsSolver {
             .count();
         let mut newton = NewtonCounts::default();
         set_switch(grid, &psi, &mut g);
-        let loose = (p.tolerance * 1e4).min(1e-6).max(p.tolerance);
+        let loose = (tolerance * 1e4).min(1e-6).max(tolerance);
         let always_tight = p.linear_solver == LinearSolver::SparseLu;
         let mut tight = always_tight;
         let mut g_new = g.clone();
@@ -1679,13 +1714,13 @@ impl ReynoldsSolver {
                 return Err(ReynoldsError::ComplementarityNotConverged {
                     iterations: newton.iterations,
                     residual: last_residual,
-                    tolerance: p.tolerance,
+                    tolerance,
                     switched_last: newton.switched_last,
                     n_unknown,
                 });
             }
             newton.iterations += 1;
-            let linear_tolerance = if tight { p.tolerance } else { loose };
+            let linear_tolerance = if tight { tolerance } else { loose };
             let (y, scale) = frozen.solve(&g, &psi, linear_tolerance, &mut newton)?;
             // The infeasible nodes: where the sign of y disagrees with g.
             g_new.copy_from_slice(&g);
@@ -1696,7 +1731,7 @@ impl ReynoldsSolver {
             let rmax = frozen.residual(&g_new, &y);
             last_residual = if scale > 0.0 { rmax / scale } else { 0.0 };
             psi = y;
-            if rmax <= p.tolerance * scale || scale == 0.0 {
+            if rmax <= tolerance * scale || scale == 0.0 {
                 g.copy_from_slice(&g_new);
                 break last_residual;
             }

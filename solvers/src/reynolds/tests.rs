@@ -249,6 +249,61 @@ fn a_start_moved_along_the_sensitivities_gives_the_same_film() {
     ));
 }
 
+/// A step solved to a looser tolerance (`solve_step_to`, the inverse solver's iterates far
+/// from their answer) stops at that mass residual with fewer Krylov iterations, its film
+/// force close to the tight one (measured on the compressor cycle: within 10 × the mass
+/// tolerance of the force scale), and a tight solve started from it is the tight answer.
+#[test]
+fn a_relaxed_step_is_close_and_finishes_to_the_tight_answer() {
+    let c = conditions(2e5);
+    let dt = 1e-4;
+    let mut s = ReynoldsSolver::new(grooved(LinearSolver::MultigridKrylov)).unwrap();
+    let state = whirled_state(&mut s, &c, dt);
+    let a: f64 = 0.62;
+    let input = StepInput {
+        eccentricity_ratio: [0.601 * a.cos(), 0.601 * a.sin()],
+        dt,
+        conditions: c.clone(),
+    };
+    let (tight, tight_state) = s.solve_step(&state, &input).unwrap();
+    let (loose, loose_state) = s.solve_step_to(&state, &input, None, 1e-6).unwrap();
+    assert!(tight.residual <= 1e-10 && loose.residual <= 1e-6);
+    assert!(
+        loose.linear_iterations < tight.linear_iterations,
+        "Krylov iterations {} loose vs {} tight",
+        loose.linear_iterations,
+        tight.linear_iterations
+    );
+    let f = tight.load_capacity;
+    for k in 0..2 {
+        assert!(
+            (loose.film_force[k] - tight.film_force[k]).abs() < 1e-5 * f,
+            "force {:?} loose vs {:?} tight",
+            loose.film_force,
+            tight.film_force
+        );
+    }
+    let (finished, finished_state) = s
+        .solve_step_from(&state, &input, Some(&loose_state))
+        .unwrap();
+    assert_eq!(finished_state.full_film, tight_state.full_film);
+    assert!(finished.residual <= 1e-10);
+    for k in 0..2 {
+        assert!(
+            (finished.film_force[k] - tight.film_force[k]).abs() < 1e-8 * f,
+            "force {:?} finished vs {:?} tight",
+            finished.film_force,
+            tight.film_force
+        );
+    }
+    // A tolerance below the solver's own is the solver's own: the same solve, bit for bit.
+    let fresh = || ReynoldsSolver::new(grooved(LinearSolver::MultigridKrylov)).unwrap();
+    let (plain, _) = fresh().solve_step(&state, &input).unwrap();
+    let (own, _) = fresh().solve_step_to(&state, &input, None, 1e-14).unwrap();
+    assert_eq!(own.film_force, plain.film_force);
+    assert_eq!(own.linear_iterations, plain.linear_iterations);
+}
+
 /// Lemke's complementary pivoting (\[Lemke1965\]; the LCP oracle of \[Giacopini2010\]) on a
 /// dense LCP: find z ≥ 0 with w = M z + q ≥ 0 and zᵀw = 0. Returns (z, w).
 fn lemke(m: &nalgebra::DMatrix<f64>, q: &nalgebra::DVector<f64>) -> (Vec<f64>, Vec<f64>) {

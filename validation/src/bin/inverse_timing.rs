@@ -34,7 +34,7 @@
 use anyhow::{Context, Result};
 use jbearing_solvers::inverse::{
     FilmModel, FilmModelError, FilmResponse, InverseParams, InverseSolution, JacobianMethod,
-    NoObserver, OperatingConditions, ReynoldsFilm, solve_inverse,
+    NoObserver, OperatingConditions, RelaxedStep, ReynoldsFilm, solve_inverse,
 };
 use jbearing_solvers::load::{FnLoad, OperatingHistory};
 use jbearing_solvers::reynolds::{FilmState, LinearSolver, TimeScheme};
@@ -91,6 +91,14 @@ impl FilmModel for TimedFilm {
 
     fn set_capture_fields(&mut self, capture: bool) {
         self.inner.set_capture_fields(capture);
+    }
+
+    fn relax_next_step(&mut self, relax: RelaxedStep) {
+        self.inner.relax_next_step(relax);
+    }
+
+    fn last_step_relaxed(&self) -> bool {
+        self.inner.last_step_relaxed()
     }
 
     /// The exact Jacobian's two linear solves are film time too.
