@@ -35,8 +35,8 @@
 //! a film solved to its own tolerance; one that passes the test from a relaxed film is solved
 //! again first. The exact Jacobian of an iterate is the derivative at its film as solved (at a
 //! relaxed film it moves by the film's tolerance; measured on the compressor cycle, 120 × 31,
-//! 1°: 1.50 Newton iterations per step and 66 refreshes in the run-in + cycle, as with tight
-//! films). For [`ReynoldsFilm`] a relaxed step is one whose semismooth Newton stops at the switch pattern
+//! 1°: 1.48 Newton iterations per step and 66 refreshes in the run-in + cycle, against 1.50
+//! and 66 with tight films). For [`ReynoldsFilm`] a relaxed step is one whose semismooth Newton stops at the switch pattern
 //! of its loose solves (1e-6 of the flux scale) instead of adding the tight solve.
 //!
 //! The exact Jacobian is kept across iterates and time steps while each iterate along it
