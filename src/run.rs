@@ -715,6 +715,8 @@ pub fn inverse_params(case: &Case) -> InverseParams {
         max_cycles: s.max_cycles,
         periodicity_tolerance: s.periodicity_tolerance,
         collapse_eccentricity: s.eccentricity_limit,
+        step_error_tolerance: s.step_error_tolerance,
+        cycle_extrapolation: s.cycle_extrapolation,
         field_stride: steps
             .checked_div(case.output.field_snapshots)
             .map_or(0, |k| k.max(1)),
@@ -879,6 +881,14 @@ impl InverseObserver for InverseAdapter<'_> {
         self.worst_residual = 0.0;
         self.observer
             .cycle_done(self.case, Method::Rigorous, cycle, eccentricity_change);
+    }
+    fn on_extrapolation(&mut self, cycle: usize) {
+        tracing::info!(
+            case = self.case,
+            "rigorous: after cycle {cycle} the march continues from the extrapolated cycle-start \
+             state (minimal polynomial extrapolation); cycle {} is compared with none",
+            cycle + 1
+        );
     }
     fn stop_requested(&mut self) -> bool {
         self.observer.stop_requested()
@@ -1066,6 +1076,20 @@ fn inverse_solver_info(
         (
             "split_steps".into(),
             ParameterValue::Integer(info.split_steps as i64),
+        ),
+        // The local error control: steps of the cycle taken in substeps, most halvings.
+        (
+            "refined_steps".into(),
+            ParameterValue::Integer(info.refined_steps as i64),
+        ),
+        (
+            "max_refinement_level".into(),
+            ParameterValue::Integer(info.max_refinement_level as i64),
+        ),
+        // Extrapolations of the cycle-to-cycle map (a slowly filling film).
+        (
+            "cycle_extrapolations".into(),
+            ParameterValue::Integer(info.cycle_extrapolations as i64),
         ),
         // The warning as a typed value: a code ("" or "not_periodic"; the numbers are the
         // attributes above) and its message.

@@ -182,6 +182,10 @@ pub struct SolverOptions {
     pub initial_eccentricity: [f64; 2],
     /// Film of the inverse solver.
     pub rigorous_film: RigorousFilm,
+    /// Local error tolerance of a rigorous step in ε (0: no error control).
+    pub step_error_tolerance: f64,
+    /// Extrapolate the cycle-to-cycle map of the rigorous solver when it converges slowly.
+    pub cycle_extrapolation: bool,
 }
 
 /// Output settings, resolved.
@@ -462,6 +466,21 @@ impl Case {
                 "time_scheme",
                 self.solver.time_scheme.name(),
                 "time discretization of the rigorous film (bdf2, backward_euler, crank_nicolson)",
+            ),
+            Parameter::number(
+                "step_error_tolerance",
+                self.solver.step_error_tolerance,
+                "1",
+                "local error tolerance of a rigorous step in the eccentricity ratio (0: none)",
+            ),
+            Parameter::text(
+                "cycle_extrapolation",
+                if self.solver.cycle_extrapolation {
+                    "true"
+                } else {
+                    "false"
+                },
+                "extrapolation of the rigorous cycle-to-cycle map",
             ),
         ]
     }
@@ -1760,6 +1779,15 @@ fn resolve_solver(s: &SolverSection, ctx: &Ctx<'_>) -> Result<SolverOptions, Cas
     let periodicity_tolerance =
         ctx.positive("solver.periodicity_tolerance", s.periodicity_tolerance)?;
     let force_tolerance = ctx.positive("solver.force_tolerance", s.force_tolerance)?;
+    if !(s.step_error_tolerance.is_finite() && s.step_error_tolerance >= 0.0) {
+        return Err(ctx.err(
+            "solver.step_error_tolerance",
+            format!(
+                "must be a finite number ≥ 0 (0: no error control), got {}",
+                s.step_error_tolerance
+            ),
+        ));
+    }
     if !(s.eccentricity_limit > 0.0 && s.eccentricity_limit < 1.0) {
         return Err(ctx.err(
             "solver.eccentricity_limit",
@@ -1815,6 +1843,8 @@ fn resolve_solver(s: &SolverSection, ctx: &Ctx<'_>) -> Result<SolverOptions, Cas
         mobility_model,
         initial_eccentricity: s.initial_eccentricity,
         rigorous_film,
+        step_error_tolerance: s.step_error_tolerance,
+        cycle_extrapolation: s.cycle_extrapolation,
     })
 }
 

@@ -295,6 +295,10 @@ pub struct SolverSection {
     pub initial_eccentricity: [f64; 2],
     #[serde(default = "default_rigorous_film")]
     pub rigorous_film: String,
+    #[serde(default = "default_step_error_tolerance")]
+    pub step_error_tolerance: f64,
+    #[serde(default = "default_cycle_extrapolation")]
+    pub cycle_extrapolation: bool,
 }
 
 impl Default for SolverSection {
@@ -309,6 +313,8 @@ impl Default for SolverSection {
             mobility_model: default_mobility_model(),
             initial_eccentricity: [0.0, 0.0],
             rigorous_film: default_rigorous_film(),
+            step_error_tolerance: default_step_error_tolerance(),
+            cycle_extrapolation: default_cycle_extrapolation(),
         }
     }
 }
@@ -374,6 +380,13 @@ fn default_time_steps() -> usize {
 }
 fn default_max_cycles() -> usize {
     20
+}
+/// The library's default (the validation's): local error per step 1e-3 in ε.
+fn default_step_error_tolerance() -> f64 {
+    jbearing_solvers::inverse::InverseParams::default().step_error_tolerance
+}
+fn default_cycle_extrapolation() -> bool {
+    jbearing_solvers::inverse::InverseParams::default().cycle_extrapolation
 }
 fn default_periodicity() -> f64 {
     1e-4

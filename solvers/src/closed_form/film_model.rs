@@ -204,6 +204,10 @@ impl ClosedFormFilm {
 impl FilmModel for ClosedFormFilm {
     type State = ClosedFormState;
 
+    fn time_scheme(&self) -> Option<TimeScheme> {
+        Some(self.scheme)
+    }
+
     fn initial_state(&self, eccentricity_ratio: [f64; 2]) -> ClosedFormState {
         ClosedFormState::at_rest(eccentricity_ratio)
     }

@@ -252,6 +252,11 @@ impl FilmModel for ElasticFilm {
         self.inner.state_change(&a.film, &b.film)
     }
 
+    /// The inner rigid film's scheme: the coupled step uses its difference formulas.
+    fn time_scheme(&self) -> Option<crate::time_scheme::TimeScheme> {
+        self.inner.time_scheme()
+    }
+
     fn set_capture_fields(&mut self, capture: bool) {
         self.capture = capture;
     }

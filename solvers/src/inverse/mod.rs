@@ -76,6 +76,8 @@
 //!   with the crate's [`TimeScheme`] (BDF2 default) discretisation of the journal velocity.
 //! - [`ReynoldsFilm`]: the universal (mass-conserving) Reynolds solver [`crate::reynolds`].
 
+pub mod cycle_map;
+pub mod error_control;
 mod reynolds_film;
 mod solve;
 mod types;
@@ -234,6 +236,35 @@ pub trait FilmModel {
     /// (after [`relax_next_step`](Self::relax_next_step)). Default false.
     fn last_step_relaxed(&self) -> bool {
         false
+    }
+
+    /// The state as a vector of numbers, for the extrapolation of the cycle-to-cycle map
+    /// (`cycle_map`, [`InverseParams::cycle_extrapolation`]): the quantities of the state that
+    /// evolve from cycle to cycle, in a fixed layout. None (default): the model's states are
+    /// not extrapolated.
+    fn state_vector(&self, _state: &Self::State) -> Option<Vec<f64>> {
+        None
+    }
+
+    /// The inverse of [`FilmModel::state_vector`]: the state shaped like `template` whose
+    /// vector is `vector` at eccentricity ratio `eccentricity_ratio`, with whatever the vector
+    /// does not hold derived from it (a film fraction kept in its range, the switch from the
+    /// sign of ψ); None when the vector is no state of this model (then the solver does not
+    /// extrapolate).
+    fn state_from_vector(
+        &self,
+        _template: &Self::State,
+        _eccentricity_ratio: [f64; 2],
+        _vector: &[f64],
+    ) -> Option<Self::State> {
+        None
+    }
+
+    /// The time scheme the model steps with, for the inverse solver's local error control
+    /// ([`InverseParams::step_error_tolerance`]); None (default) for a model without one: no
+    /// control.
+    fn time_scheme(&self) -> Option<TimeScheme> {
+        None
     }
 
     /// Named measures of the last step this model solved (its inner iterations, what changed

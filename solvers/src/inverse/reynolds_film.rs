@@ -168,6 +168,62 @@ impl FilmModel for ReynoldsFilm {
             .fold(0.0, f64::max)
     }
 
+    /// φ, then the BDF2 level before (content h φ) and the net outflow (Crank–Nicolson's Dⁿ)
+    /// where the state has them. The gap change of an elastic film is not part of it (None:
+    /// such states are not extrapolated).
+    fn state_vector(&self, state: &FilmState) -> Option<Vec<f64>> {
+        if state.deformation.is_some() {
+            return None;
+        }
+        let mut v: Vec<f64> = state.density_ratio.iter().copied().collect();
+        if let Some((content, _)) = &state.previous_level {
+            v.extend(content.iter());
+        }
+        if let Some(outflow) = &state.net_outflow {
+            v.extend(outflow.iter());
+        }
+        Some(v)
+    }
+
+    /// φ ≥ 0 (a film fraction cannot be negative), the switch full where ψ = φ − 1 ≥ 0, the
+    /// old content ≥ 0; the BDF2 step length of `template`.
+    fn state_from_vector(
+        &self,
+        template: &FilmState,
+        eccentricity_ratio: [f64; 2],
+        vector: &[f64],
+    ) -> Option<FilmState> {
+        let n = template.density_ratio.len();
+        let expected = n
+            * (1 + usize::from(template.previous_level.is_some())
+                + usize::from(template.net_outflow.is_some()));
+        if vector.len() != expected || template.deformation.is_some() {
+            return None;
+        }
+        let shape = template.density_ratio.dim();
+        let field = |part: &[f64], floor: f64| {
+            ndarray::Array2::from_shape_vec(shape, part.iter().map(|v| v.max(floor)).collect()).ok()
+        };
+        let mut parts = vector.chunks(n);
+        let density_ratio = field(parts.next()?, 0.0)?;
+        let previous_level = match &template.previous_level {
+            Some((_, dt)) => Some((field(parts.next()?, 0.0)?, *dt)),
+            None => None,
+        };
+        let net_outflow = match &template.net_outflow {
+            Some(_) => Some(field(parts.next()?, f64::NEG_INFINITY)?),
+            None => None,
+        };
+        Some(FilmState {
+            eccentricity_ratio,
+            full_film: density_ratio.mapv(|phi| phi >= 1.0),
+            density_ratio,
+            net_outflow,
+            previous_level,
+            deformation: None,
+        })
+    }
+
     fn set_capture_fields(&mut self, capture: bool) {
         self.capture = capture;
     }
@@ -180,6 +236,10 @@ impl FilmModel for ReynoldsFilm {
 
     fn last_step_relaxed(&self) -> bool {
         self.last_relaxed
+    }
+
+    fn time_scheme(&self) -> Option<crate::time_scheme::TimeScheme> {
+        Some(self.solver.params().time_scheme)
     }
 
     /// [`ReynoldsSolver::film_force_jacobian`]: two extra linear solves on the converged

@@ -10,6 +10,8 @@
 //!
 //! Cycle numbering in errors and progress: 0 is the run-in, 1, 2, … the load cycles.
 
+use super::cycle_map::CycleExtrapolation;
+use super::error_control::{ErrorControl, extrapolate};
 use super::types::*;
 use super::{FilmFields, FilmModel, FilmModelError, FilmResponse, OperatingConditions};
 use crate::load::LoadHistory;
@@ -74,6 +76,8 @@ struct Stats {
     stalled: usize,
     max_stalled: f64,
     split: usize,
+    /// Halvings on Newton failure at any depth (substeps included).
+    halvings: usize,
 }
 
 /// The Jacobian ∂F/∂ε carried across steps.
@@ -207,7 +211,18 @@ where
         },
         stats: Stats::default(),
         stalls: Vec::new(),
+        control: film.time_scheme().and_then(|scheme| {
+            ErrorControl::new(
+                scheme,
+                params.step_error_tolerance,
+                params.max_step_splits,
+                grid.steps,
+            )
+        }),
     };
+    if let (Some(control), Some(start)) = (stepper.control.as_mut(), start_from.as_ref()) {
+        control.start_from(&start.step_levels);
+    }
     let mut orbit = Orbit::starting(start_from, &*film);
     orbit.run_in(&mut stepper, film, load, &grid, observer)?;
     let outcome = orbit.cycles_until_periodic(&mut stepper, film, load, &grid, observer)?;
@@ -217,6 +232,10 @@ where
         eccentricity_ratio: orbit.eps,
         previous: [orbit.prev, orbit.prev2],
         state: orbit.state,
+        step_levels: stepper
+            .control
+            .as_ref()
+            .map_or_else(Vec::new, |c| c.levels().to_vec()),
     };
     let solution = InverseSolution {
         summary: summarize(&outcome.records),
@@ -244,6 +263,10 @@ fn inverse_info(
         film_state_tolerance: params.film_state_tolerance,
     });
     let stats = &stepper.stats;
+    let (refined_steps, max_refinement_level) = stepper
+        .control
+        .as_ref()
+        .map_or((0, 0), ErrorControl::refined);
     InverseInfo {
         steps_per_cycle: grid.steps,
         time_step: grid.dt,
@@ -264,6 +287,9 @@ fn inverse_info(
         stalled_steps: stats.stalled,
         max_stalled_residual: stats.max_stalled,
         split_steps: stats.split,
+        refined_steps,
+        max_refinement_level,
+        cycle_extrapolations: outcome.extrapolations,
         wall_time: start.elapsed().as_secs_f64(),
     }
 }
@@ -399,6 +425,8 @@ struct CyclesOutcome {
     periodic: bool,
     eccentricity_change: f64,
     film_state_change: f64,
+    /// Extrapolations of the cycle map made.
+    extrapolations: usize,
 }
 
 /// max_i |ε_i − ε_i(previous cycle)| over the cycle's steps; ∞ for the first cycle.
@@ -450,6 +478,12 @@ fn validate(p: &InverseParams) -> Result<(), InverseError> {
         return Err(InverseError::InvalidParameter {
             name: "collapse_eccentricity",
             value: p.collapse_eccentricity,
+        });
+    }
+    if !(p.step_error_tolerance.is_finite() && p.step_error_tolerance >= 0.0) {
+        return Err(InverseError::InvalidParameter {
+            name: "step_error_tolerance",
+            value: p.step_error_tolerance,
         });
     }
     if p.max_cycles == 0 {
@@ -584,6 +618,8 @@ struct Stepper<'p> {
     stats: Stats,
     /// Steps accepted as stalls since the observer last heard of them.
     stalls: Vec<InverseStall>,
+    /// The local error control of the cycle steps (None: off, or a film without a scheme).
+    control: Option<ErrorControl>,
 }
 
 /// One step to take: from ε at `t_end − dt` to `t_end`, Newton started at `guess`.
@@ -607,6 +643,10 @@ pub struct InverseStart<S> {
     pub previous: [[f64; 2]; 2],
     /// The film state at the start.
     pub state: S,
+    /// The level of the local error control each step of the cycle took
+    /// ([`InverseParams::step_error_tolerance`]; empty: none yet): a solve started here takes
+    /// each step with at least as many substeps.
+    pub step_levels: Vec<usize>,
 }
 
 /// The journal's last three accepted positions (the quadratic predictor's data) and the film
@@ -685,7 +725,7 @@ impl<S: Clone> Orbit<S> {
                 crank_angle_deg: load.crank_angle_deg(t).rem_euclid(grid.cycle_deg),
                 cycle: 0,
             };
-            let step = self.march_step(stepper, film, dt, &ramp, at, false)?;
+            let step = self.march_step(stepper, film, (t, dt), &ramp, at, false, None)?;
             for stall in stepper.stalls.drain(..) {
                 observer.on_stall(&stall);
             }
@@ -727,8 +767,16 @@ impl<S: Clone> Orbit<S> {
             periodic: false,
             eccentricity_change: f64::INFINITY,
             film_state_change: 0.0,
+            extrapolations: 0,
         };
         let mut previous: Option<Vec<[f64; 2]>> = None;
+        let mut extrapolation = params
+            .cycle_extrapolation
+            .then(CycleExtrapolation::new)
+            .filter(|_| self.vector(film).is_some());
+        if let (Some(e), Some(v)) = (extrapolation.as_mut(), self.vector(film)) {
+            e.restart(v);
+        }
         for cycle in 1..=params.max_cycles {
             outcome.cycles = cycle;
             let state_start = self.state.clone();
@@ -755,8 +803,63 @@ impl<S: Clone> Orbit<S> {
                 outcome.periodic = true;
                 break;
             }
+            if let Some(e) = extrapolation.as_mut() {
+                let jumped = self.vector(film).and_then(|v| {
+                    // The slower of the two periodicity measures, in units of its tolerance.
+                    let change = (outcome.eccentricity_change / params.periodicity_tolerance)
+                        .max(outcome.film_state_change / params.film_state_tolerance);
+                    let s = e.push(v, change)?;
+                    self.set_vector(film, &s).then_some(s)
+                });
+                if let Some(s) = jumped {
+                    // The next cycle starts elsewhere: it is compared with none.
+                    e.restart(s);
+                    previous = None;
+                    stepper.jac.valid = false;
+                    observer.on_extrapolation(cycle);
+                }
+            }
         }
+        outcome.extrapolations = extrapolation.map_or(0, |e| e.count);
         Ok(outcome)
+    }
+
+    /// The cycle-start state as a vector ([`super::cycle_map`]): ε^n, ε^{n−1}, ε^{n−2}, then the
+    /// film's [`FilmModel::state_vector`].
+    fn vector<F: FilmModel<State = S> + ?Sized>(&self, film: &F) -> Option<Vec<f64>> {
+        let mut v = vec![
+            self.eps[0],
+            self.eps[1],
+            self.prev[0],
+            self.prev[1],
+            self.prev2[0],
+            self.prev2[1],
+        ];
+        v.extend(film.state_vector(&self.state)?);
+        Some(v)
+    }
+
+    /// Move the orbit to the state of `vector` ([`Orbit::vector`]'s layout); false (and the
+    /// orbit unchanged) when it is no state: a journal position not inside the clearance, or
+    /// one the film refuses.
+    fn set_vector<F: FilmModel<State = S> + ?Sized>(&mut self, film: &F, vector: &[f64]) -> bool {
+        let [e0, e1, p0, p1, q0, q1] = vector[..6] else {
+            return false;
+        };
+        let (eps, prev, prev2) = ([e0, e1], [p0, p1], [q0, q1]);
+        if [eps, prev, prev2]
+            .iter()
+            .any(|e| norm(*e).is_nan() || norm(*e) >= 1.0)
+        {
+            return false;
+        }
+        match film.state_from_vector(&self.state, eps, &vector[6..]) {
+            Some(state) => {
+                (self.eps, self.prev, self.prev2, self.state) = (eps, prev, prev2, state);
+                true
+            }
+            None => false,
+        }
     }
 
     /// One load cycle: N steps from t_c = (cycle − 1)·τ; their records and (every
@@ -783,7 +886,12 @@ impl<S: Clone> Orbit<S> {
         for i in 0..grid.steps {
             let tau = (i + 1) as f64 * grid.dt;
             let t = t_c + tau;
-            let (w, _) = drive(t)?;
+            // The histories are periodic: the drive is evaluated at the time within the cycle,
+            // so that a step and its substeps see the same load and feed in every cycle to the
+            // bit (from the absolute time t_c + τ the crank angle carries the rounding of t_c,
+            // and a substep ending where the feed falls to p_cav — the rod's drilling closing
+            // at 31° — would find the groove fed in one cycle and starved in the next).
+            let (w, _) = drive(tau)?;
             let crank = load.crank_angle_deg(tau);
             let at = Where {
                 time: t,
@@ -793,7 +901,8 @@ impl<S: Clone> Orbit<S> {
             // Steps end at crank angles (i + 1)·Δ: capturing at the ends of strides puts the
             // snapshots at stride·Δ, 2·stride·Δ, …, including the cycle's end (= its start).
             let capture = params.field_stride > 0 && (i + 1) % params.field_stride == 0;
-            let step = self.march_step(stepper, film, grid.dt, &drive, at, capture)?;
+            let step =
+                self.march_step(stepper, film, (tau, grid.dt), &drive, at, capture, Some(i))?;
             for stall in stepper.stalls.drain(..) {
                 observer.on_stall(&stall);
             }
@@ -822,19 +931,23 @@ impl<S: Clone> Orbit<S> {
         Ok((records, snapshots))
     }
 
-    /// One time step of the march (run-in and cycles alike) to `at.time`: the quadratic
-    /// predictor's guess, [`Stepper::advance`] (halving the step where Newton fails), optionally the
-    /// accepted step solved once more with the fields captured, and the orbit moved on.
+    /// One time step of the march (run-in and cycles alike) of length `dt` ending at `t`, the
+    /// time `drive` takes (within the cycle for the cycles; `at` names the step in messages):
+    /// the quadratic predictor's guess, [`Stepper::advance`] (halving the step where Newton fails) — for
+    /// step `cycle_step` of a cycle under the local error control, [`Orbit::controlled_step`] —,
+    /// optionally the accepted step solved once more with the fields captured, and the orbit
+    /// moved on.
+    #[allow(clippy::too_many_arguments)]
     fn march_step<F: FilmModel<State = S> + ?Sized>(
         &mut self,
         stepper: &mut Stepper<'_>,
         film: &mut F,
-        dt: f64,
+        (t, dt): (f64, f64),
         drive: &Drive<'_>,
         at: Where,
         capture_fields: bool,
+        cycle_step: Option<usize>,
     ) -> Result<Marched, InverseError> {
-        let t = at.time;
         let leg = Leg {
             eps: self.eps,
             guess: predict_quadratic(self.eps, self.prev, self.prev2),
@@ -842,7 +955,10 @@ impl<S: Clone> Orbit<S> {
             dt,
             at,
         };
-        let acc = stepper.advance(film, &self.state, leg, drive, 0)?;
+        let acc = match cycle_step.filter(|_| stepper.control.is_some()) {
+            Some(i) => self.controlled_step(stepper, film, leg, drive, i)?,
+            None => stepper.advance(film, &self.state, leg, drive, 0)?,
+        };
         let fields = if capture_fields {
             let (_, cond) = drive(t)?;
             film.set_capture_fields(true);
@@ -871,7 +987,103 @@ impl<S: Clone> Orbit<S> {
     }
 }
 
+impl<S: Clone> Orbit<S> {
+    /// Step `i` of a cycle under the local error control ([`super::error_control`]): at the
+    /// level the step took before (a full step at level 0), then again in more substeps while
+    /// the error estimate asks for them; the level is remembered for the later cycles. A step
+    /// whose Newton had to halve a (sub)step ([`Stepper::advance`]) is taken again at one level
+    /// more, so that the halving on failure — which may happen in one cycle and not in the
+    /// next — does not decide the answer.
+    fn controlled_step<F: FilmModel<State = S> + ?Sized>(
+        &self,
+        stepper: &mut Stepper<'_>,
+        film: &mut F,
+        leg: Leg,
+        drive: &Drive<'_>,
+        i: usize,
+    ) -> Result<Accepted<S>, InverseError> {
+        let history = [self.eps, self.prev, self.prev2];
+        let control = stepper.control.as_ref().expect("controlled step");
+        let (mut level, max_level) = (control.level(i), control.max_level());
+        loop {
+            let halvings_before = stepper.stats.halvings;
+            let acc = stepper.substeps(film, &self.state, history, leg, drive, level)?;
+            let halved = stepper.stats.halvings > halvings_before;
+            let control = stepper.control.as_ref().expect("controlled step");
+            let estimate = control.estimate(acc.eps, history, level > 0 || halved);
+            let mut needed = control.level_for(estimate);
+            if halved {
+                needed = needed.max((level + 1).min(max_level));
+            }
+            if needed <= level {
+                stepper
+                    .control
+                    .as_mut()
+                    .expect("controlled step")
+                    .raise(i, level.max(usize::from(halved)));
+                return Ok(acc);
+            }
+            level = needed;
+        }
+    }
+}
+
 impl Stepper<'_> {
+    /// The step `leg` from `state` in 2^`level` equal substeps (level 0: the step itself), each
+    /// by [`Stepper::advance`] with the splits left below `max_step_splits`; Newton's guess for
+    /// each substep is the quadratic through the last three positions (`history` = ε at the
+    /// step's start and the two full steps before). Returns the end with the Newton iterations
+    /// of all substeps.
+    fn substeps<F: FilmModel + ?Sized>(
+        &mut self,
+        film: &mut F,
+        state: &F::State,
+        history: [[f64; 2]; 3],
+        leg: Leg,
+        drive: &Drive<'_>,
+        level: usize,
+    ) -> Result<Accepted<F::State>, InverseError> {
+        if level == 0 {
+            return self.advance(film, state, leg, drive, 0);
+        }
+        let n = 1usize << level;
+        let h = leg.dt / n as f64;
+        let t0 = leg.t_end - leg.dt;
+        let mut points = vec![
+            (t0 - 2.0 * leg.dt, history[2]),
+            (t0 - leg.dt, history[1]),
+            (t0, history[0]),
+        ];
+        self.jac.valid = false;
+        let mut iterations = 0;
+        let mut last: Option<Accepted<F::State>> = None;
+        for j in 1..=n {
+            let t = if j == n { leg.t_end } else { t0 + j as f64 * h };
+            let (eps, from) = match &last {
+                Some(a) => (a.eps, &a.state),
+                None => (leg.eps, state),
+            };
+            let sub = Leg {
+                eps,
+                guess: pull_back(eps, extrapolate(&points, t)),
+                t_end: t,
+                dt: h,
+                at: Where {
+                    time: leg.at.time - (leg.t_end - t),
+                    ..leg.at
+                },
+            };
+            let acc = self.advance(film, from, sub, drive, level)?;
+            iterations += acc.iterations;
+            points.push((t, acc.eps));
+            last = Some(acc);
+        }
+        self.jac.valid = false;
+        let mut acc = last.expect("at least two substeps");
+        acc.iterations = iterations;
+        Ok(acc)
+    }
+
     /// One time step `leg` from `state`. When Newton fails the step is retried as two half
     /// steps (the load and conditions of the midpoint from `drive`, the film state carried
     /// through it), recursively up to [`InverseParams::max_step_splits`] halvings. The Jacobian
@@ -897,6 +1109,7 @@ impl Stepper<'_> {
                 if depth == 0 {
                     self.stats.split += 1;
                 }
+                self.stats.halvings += 1;
                 let Leg {
                     eps, guess, t_end, ..
                 } = leg;
@@ -913,7 +1126,7 @@ impl Stepper<'_> {
                         t_end: t_mid,
                         dt: half,
                         at: Where {
-                            time: t_mid,
+                            time: leg.at.time - half,
                             ..leg.at
                         },
                     },
