@@ -101,6 +101,25 @@ impl FilmModel for TimedFilm {
         self.inner.last_step_relaxed()
     }
 
+    // The local error control and the cycle extrapolation need these: without them the timed
+    // film would run a configuration the application does not.
+    fn time_scheme(&self) -> Option<TimeScheme> {
+        self.inner.time_scheme()
+    }
+
+    fn state_vector(&self, state: &FilmState) -> Option<Vec<f64>> {
+        self.inner.state_vector(state)
+    }
+
+    fn state_from_vector(
+        &self,
+        template: &FilmState,
+        eccentricity_ratio: [f64; 2],
+        vector: &[f64],
+    ) -> Option<FilmState> {
+        self.inner.state_from_vector(template, eccentricity_ratio, vector)
+    }
+
     /// The exact Jacobian's two linear solves are film time too.
     fn force_jacobian(&mut self) -> Option<Result<[[f64; 2]; 2], FilmModelError>> {
         let t0 = thread_cpu_seconds();
