@@ -175,6 +175,10 @@ impl ElasticFilm {
     }
 }
 
+/// The coupled film reports no time scheme and no state vector, so the inverse solver's local
+/// error control and cycle extrapolation (`crate::inverse::error_control`,
+/// `crate::inverse::cycle_map`) leave it as its dynamic row was measured (docs/validation.md);
+/// bringing it under both, and re-running that row, is the next step.
 impl FilmModel for ElasticFilm {
     type State = ElasticFilmState;
 
@@ -250,11 +254,6 @@ impl FilmModel for ElasticFilm {
 
     fn state_change(&self, a: &ElasticFilmState, b: &ElasticFilmState) -> f64 {
         self.inner.state_change(&a.film, &b.film)
-    }
-
-    /// The inner rigid film's scheme: the coupled step uses its difference formulas.
-    fn time_scheme(&self) -> Option<crate::time_scheme::TimeScheme> {
-        self.inner.time_scheme()
     }
 
     fn set_capture_fields(&mut self, capture: bool) {

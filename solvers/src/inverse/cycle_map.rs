@@ -26,14 +26,16 @@
 //!
 //! # When
 //!
-//! With the change of a cycle measured as m = max(|Δε|/tol_ε, |Δφ|/tol_φ) (the periodicity test
-//! holds at m ≤ 1): after a plain cycle c that is not periodic, when the window holds k + 2 = 4
-//! states of plain cycles (k = 2), 5 < m_c ≤ 100 (above the noise of the Newton and film
-//! tolerances, and near the map's linear regime: |Δε| ≤ 0.1 at the default tolerance) and the
-//! plain iteration would need more than two further cycles: with the contraction
-//! r = m_c / m_{c−1}, ln(1/m_c) / ln r > 2 (r ≥ 1 counts as more). Two is what an extrapolation
-//! costs at least (the jump's cycle and the comparison). A fast map (the flooded main bearing:
-//! periodic after 4 cycles) is never extrapolated.
+//! With the changes of a cycle measured in units of the periodicity tolerances, m_ε = |Δε|/tol_ε
+//! and m_φ = |Δφ|/tol_φ (the test holds when both are ≤ 1): after a plain cycle c that is not
+//! periodic, when the window holds k + 2 = 4 states of plain cycles (k = 2), 5 < max(m_ε, m_φ)
+//! ≤ 100 (above the noise of the Newton and film tolerances, and near the map's linear regime:
+//! |Δε| ≤ 0.1 at the default tolerance) and the plain iteration would still need more than 3.5
+//! cycles by one of the measures at its observed contraction r = m_c / m_{c−1}: ln(1/m_c) / ln r
+//! (r ≥ 1 counts as more). An extrapolation costs two cycles at least (the jump's cycle, never
+//! compared, and the comparison), and the contraction seen early overstates what is left. The
+//! flooded main bearing (periodic after 5 cycles) is not extrapolated; the starved rod is, twice
+//! (docs/results.md).
 //!
 //! ```text
 //!   x_0 ─G─> x_1 ─G─> x_2 ─G─> x_3      window of plain cycles (4 states)
@@ -47,6 +49,11 @@ const DEGREE: usize = 2;
 /// Largest change of the last cycle, in units of the periodicity tolerances, for which the map
 /// is treated as linear (100: |Δε| 0.1 at the default tolerance 1e-3).
 const LINEAR_REGIME: f64 = 100.0;
+/// Cycles the plain iteration must still need for an extrapolation: it costs two at least (the
+/// jump's cycle, never compared, and the comparison), and the contraction seen early in a run
+/// overstates what is left (the flooded main bearing after cycle 3: 3.2 cycles estimated from
+/// |Δφ|, two needed).
+const MIN_CYCLES_SAVED: f64 = 3.5;
 /// Smallest change of the last cycle, in units of the tolerances, worth an extrapolation: near
 /// the tolerance the cycle-to-cycle differences are the Newton's and the film solver's noise as
 /// much as the map's modes, and an extrapolation from them costs cycles (measured on the rod:
@@ -57,9 +64,9 @@ const NOISE_FLOOR: f64 = 5.0;
 pub(super) struct CycleExtrapolation {
     /// States of successive plain cycles (the first the start of the window).
     states: Vec<Vec<f64>>,
-    /// The change of each plain cycle of the window, max(|Δε|/tol_ε, |Δφ|/tol_φ) (∞ where
-    /// not assessed).
-    changes: Vec<f64>,
+    /// The changes of each plain cycle of the window, [|Δε|/tol_ε, |Δφ|/tol_φ] (∞ where not
+    /// assessed).
+    changes: Vec<[f64; 2]>,
     /// Extrapolations made.
     pub(super) count: usize,
 }
@@ -80,17 +87,17 @@ impl CycleExtrapolation {
         self.changes.clear();
     }
 
-    /// The end of a plain cycle, with its change max(|Δε|/tol_ε, |Δφ|/tol_φ) (the periodicity
-    /// test holds at ≤ 1), and — by the rule of the module docs —
-    /// the extrapolated state to continue from, if any. A state whose length differs from the
+    /// The end of a plain cycle, with its changes [|Δε|/tol_ε, |Δφ|/tol_φ] (the periodicity
+    /// test holds when both are ≤ 1), and — by the rule of the module docs — the extrapolated
+    /// state to continue from, if any. A state whose length differs from the
     /// window's (the film changed its layout) restarts the window.
-    pub(super) fn push(&mut self, state: Vec<f64>, change: f64) -> Option<Vec<f64>> {
+    pub(super) fn push(&mut self, state: Vec<f64>, changes: [f64; 2]) -> Option<Vec<f64>> {
         if self.states.first().is_some_and(|s| s.len() != state.len()) {
             self.restart(state);
             return None;
         }
         self.states.push(state);
-        self.changes.push(change);
+        self.changes.push(changes);
         if self.states.len() > DEGREE + 2 {
             self.states.remove(0);
             self.changes.remove(0);
@@ -107,15 +114,22 @@ impl CycleExtrapolation {
     fn worth_it(&self) -> bool {
         let n = self.changes.len();
         let (last, before) = (self.changes[n - 1], self.changes[n - 2]);
-        if !(last.is_finite() && last <= LINEAR_REGIME && last > NOISE_FLOOR) {
+        let m = last[0].max(last[1]);
+        if !(m.is_finite() && m <= LINEAR_REGIME && m > NOISE_FLOOR) {
             return false;
         }
-        let r = if before.is_finite() && before > 0.0 {
-            last / before
-        } else {
-            1.0
+        // Cycles the plain iteration still needs, per measure, at its observed contraction.
+        let remaining = |k: usize| {
+            let (l, b) = (last[k], before[k]);
+            if l <= 1.0 {
+                0.0
+            } else if !(b.is_finite() && b > 0.0) || l >= b {
+                f64::INFINITY
+            } else {
+                (1.0 / l).ln() / (l / b).ln()
+            }
         };
-        r >= 1.0 || (1.0 / last).ln() / r.ln() > 2.0
+        remaining(0).max(remaining(1)) > MIN_CYCLES_SAVED
     }
 }
 
@@ -196,18 +210,25 @@ mod tests {
     fn extrapolates_only_slow_near_linear_maps() {
         let mut e = CycleExtrapolation::new();
         e.restart(vec![0.0, 0.0]);
-        assert!(e.push(vec![1.0, 0.0], f64::INFINITY).is_none());
-        assert!(e.push(vec![1.5, 0.1], 500.0).is_none());
+        let inf = f64::INFINITY;
+        assert!(e.push(vec![1.0, 0.0], [inf, 900.0]).is_none());
+        assert!(e.push(vec![1.5, 0.1], [500.0, 300.0]).is_none());
         // 4 states, but the change 300 is outside the linear regime.
-        assert!(e.push(vec![1.7, 0.1], 300.0).is_none());
-        // fast: 10 after 300 (r = 0.033): one more cycle reaches 1.
-        assert!(e.push(vec![1.71, 0.1], 10.0).is_none());
-        // slow: r = 0.6 from 50 → ln(1/50)/ln(0.6) = 7.7 cycles.
+        assert!(e.push(vec![1.7, 0.1], [300.0, 200.0]).is_none());
+        // fast: 10 after 300 and 8 after 200: one more cycle reaches 1.
+        assert!(e.push(vec![1.71, 0.1], [10.0, 8.0]).is_none());
+        // The main bearing after cycle 3: ε 20.8 after 195, φ 58 after 206 (3.2 cycles left).
         let mut e = CycleExtrapolation::new();
         e.restart(vec![0.0, 0.0]);
-        e.push(vec![0.1, 0.02], f64::INFINITY);
-        e.push(vec![0.16, 0.01], 83.0);
-        assert!(e.push(vec![0.196, 0.016], 50.0).is_some());
+        e.push(vec![1.0, 0.0], [inf, 811.0]);
+        e.push(vec![1.2, 0.1], [195.0, 206.0]);
+        assert!(e.push(vec![1.22, 0.1], [20.8, 58.0]).is_none());
+        // slow: ε 50 after 83 → ln(1/50)/ln(0.6) = 7.7 cycles.
+        let mut e = CycleExtrapolation::new();
+        e.restart(vec![0.0, 0.0]);
+        e.push(vec![0.1, 0.02], [inf, 100.0]);
+        e.push(vec![0.16, 0.01], [83.0, 20.0]);
+        assert!(e.push(vec![0.196, 0.016], [50.0, 10.0]).is_some());
         assert_eq!(e.count, 1);
     }
 }

@@ -805,10 +805,12 @@ impl<S: Clone> Orbit<S> {
             }
             if let Some(e) = extrapolation.as_mut() {
                 let jumped = self.vector(film).and_then(|v| {
-                    // The slower of the two periodicity measures, in units of its tolerance.
-                    let change = (outcome.eccentricity_change / params.periodicity_tolerance)
-                        .max(outcome.film_state_change / params.film_state_tolerance);
-                    let s = e.push(v, change)?;
+                    // The two periodicity measures, in units of their tolerances.
+                    let changes = [
+                        outcome.eccentricity_change / params.periodicity_tolerance,
+                        outcome.film_state_change / params.film_state_tolerance,
+                    ];
+                    let s = e.push(v, changes)?;
                     self.set_vector(film, &s).then_some(s)
                 });
                 if let Some(s) = jumped {

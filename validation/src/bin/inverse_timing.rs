@@ -117,7 +117,8 @@ impl FilmModel for TimedFilm {
         eccentricity_ratio: [f64; 2],
         vector: &[f64],
     ) -> Option<FilmState> {
-        self.inner.state_from_vector(template, eccentricity_ratio, vector)
+        self.inner
+            .state_from_vector(template, eccentricity_ratio, vector)
     }
 
     /// The exact Jacobian's two linear solves are film time too.
