@@ -21,7 +21,7 @@ fn run_into(case: impl AsRef<Path>, out: &Path, extra: &[&str]) -> Output {
 }
 
 /// One bad case per kind the application must reject with a precise message.
-const KINDS: [&str; 38] = [
+const KINDS: [&str; 39] = [
     "syntax_error",
     "unknown_key",
     "missing_key",
@@ -60,6 +60,7 @@ const KINDS: [&str; 38] = [
     "elastic_zero_tolerance",
     "elastic_not_steady",
     "elastic_unknown_key",
+    "negative_step_error_tolerance",
 ];
 
 #[test]
@@ -98,6 +99,7 @@ fn each_bad_case_gives_its_exact_message_with_file_key_and_line() {
             "operation.",
             "methods.",
             "mechanism.",
+            "solver.",
             "elastic",
             "version",
             "radius_m",
