@@ -158,12 +158,10 @@ fn local_error(
     if substepped { c * d } else { c / (1.0 + c) * d }
 }
 
-/// The quadratic extrapolation 3ε^n − 3ε^{n−1} + ε^{n−2} of three equally spaced positions.
-fn quadratic(e0: [f64; 2], e1: [f64; 2], e2: [f64; 2]) -> [f64; 2] {
-    [
-        3.0 * e0[0] - 3.0 * e1[0] + e2[0],
-        3.0 * e0[1] - 3.0 * e1[1] + e2[1],
-    ]
+/// The quadratic extrapolation 3ε^n − 3ε^{n−1} + ε^{n−2} of three equally spaced positions
+/// (the march's predictor before its pull-back from the wall, and Milne's P₂).
+pub(super) fn quadratic(e0: [f64; 2], e1: [f64; 2], e2: [f64; 2]) -> [f64; 2] {
+    [3.0 * (e0[0] - e1[0]) + e2[0], 3.0 * (e0[1] - e1[1]) + e2[1]]
 }
 
 /// ε at time `t` from the quadratic (linear with two points) through the last points `(t_k,

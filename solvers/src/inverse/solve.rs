@@ -11,7 +11,7 @@
 //! Cycle numbering in errors and progress: 0 is the run-in, 1, 2, … the load cycles.
 
 use super::cycle_map::CycleExtrapolation;
-use super::error_control::{ErrorControl, extrapolate};
+use super::error_control::{ErrorControl, extrapolate, quadratic};
 use super::types::*;
 use super::{FilmFields, FilmModel, FilmModelError, FilmResponse, OperatingConditions};
 use crate::load::LoadHistory;
@@ -511,11 +511,7 @@ fn predict(eps: [f64; 2], prev: [f64; 2]) -> [f64; 2] {
 /// Quadratic extrapolation ε^{n+1} ≈ 3ε^n − 3ε^{n−1} + ε^{n−2} (error O(Δt³) against the linear
 /// one's O(Δt²)), with the same pull-back.
 fn predict_quadratic(eps: [f64; 2], prev: [f64; 2], prev2: [f64; 2]) -> [f64; 2] {
-    let g = [
-        3.0 * (eps[0] - prev[0]) + prev2[0],
-        3.0 * (eps[1] - prev[1]) + prev2[1],
-    ];
-    pull_back(eps, g)
+    pull_back(eps, quadratic(eps, prev, prev2))
 }
 
 fn pull_back(eps: [f64; 2], g: [f64; 2]) -> [f64; 2] {
