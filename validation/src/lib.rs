@@ -30,6 +30,8 @@ pub fn read_reference_csv(name: &str) -> Vec<Vec<f64>> {
 /// c = 35.56 µm (the table's "mm" is a unit slip), μ = 4.16 cP, 2000 rpm, fixed bearing, the
 /// Bouldin & Berker engine load of `data/reference/flores2006_load.csv` (720° cycle, along −Y),
 /// start ε⁰ = 0.1 at φ⁰ = 1.5 rad.
+pub mod smoothness;
+
 pub mod flores2006 {
     use jbearing_solvers::mobility::{
         LoadInterpolation, MobilityParams, OrbitParams, TabulatedLoad,

@@ -212,6 +212,13 @@ impl FilmModel for ClosedFormFilm {
         ClosedFormState::at_rest(eccentricity_ratio)
     }
 
+    /// BDF2's level before becomes ε at `start`, one step `dt` back (the trait's docs).
+    fn join_substeps(&self, start: &ClosedFormState, end: &mut ClosedFormState, dt: f64) {
+        if end.previous.is_some() {
+            end.previous = Some((start.eccentricity_ratio, dt));
+        }
+    }
+
     fn step(
         &mut self,
         state: &ClosedFormState,

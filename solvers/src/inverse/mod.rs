@@ -260,6 +260,28 @@ pub trait FilmModel {
         None
     }
 
+    /// The end `end` of a step of length `dt` that the caller took in parts (substeps of the
+    /// local error control, halves of a split step) from `start`: make its multistep history
+    /// that of one step from `start`, so that the next step, of length `dt` again, continues
+    /// with a step ratio of 1. Variable-step BDF2 is zero-stable only for step ratios below
+    /// 1 + √2 \[Grigorieff1983\] — the step after 2^k substeps would have the ratio 2^k —,
+    /// and over a periodic cycle its flows sum to the change of content only where the ratio
+    /// is 1 (`InverseStep`'s docs). Default: nothing (one-step schemes, models without a
+    /// history).
+    fn join_substeps(&self, _start: &Self::State, _end: &mut Self::State, _dt: f64) {}
+
+    /// The volumes of oil (m³) that have left the film through its two ends and entered it
+    /// through each groove up to `state`, integrated in time by the model's own scheme — the
+    /// time integral the scheme applies to the film content, so that between any two states
+    /// the content's change is the volume in minus the volume out, whatever the step lengths
+    /// (`crate::reynolds::FilmState::boundary_volume`): `[end z = −L/2, end z = +L/2, groove
+    /// 1, …]`. The inverse solver records a step's flows as its volumes over its length. None
+    /// (default): the step's flows are those of its end (the mean of its parts' for a step
+    /// taken in parts).
+    fn boundary_volumes(&self, _state: &Self::State) -> Option<Vec<f64>> {
+        None
+    }
+
     /// The time scheme the model steps with, for the inverse solver's local error control
     /// ([`InverseParams::step_error_tolerance`]); None (default) for a model without one: no
     /// control.

@@ -221,7 +221,27 @@ impl FilmModel for ReynoldsFilm {
             net_outflow,
             previous_level,
             deformation: None,
+            // The volumes count from the start of the solve and are not periodic: the
+            // template's (the last state before the extrapolation) carry on.
+            boundary_flow: template.boundary_flow.clone(),
+            boundary_volume: template.boundary_volume.clone(),
+            previous_boundary_volume: template.previous_boundary_volume.clone(),
         })
+    }
+
+    /// BDF2's level before becomes the content and the boundary volumes at `start`, one step
+    /// `dt` back (the trait's docs); the other schemes keep no level before.
+    fn join_substeps(&self, start: &FilmState, end: &mut FilmState, dt: f64) {
+        if end.previous_level.is_some() {
+            end.previous_level = Some((self.solver.film_content(start), dt));
+            end.previous_boundary_volume = Some(start.boundary_volume.clone());
+        }
+    }
+
+    /// [`FilmState::boundary_volume`]: the side leakage at both ends and the supply of each
+    /// groove integrated by the scheme of each step.
+    fn boundary_volumes(&self, state: &FilmState) -> Option<Vec<f64>> {
+        (!state.boundary_volume.is_empty()).then(|| state.boundary_volume.clone())
     }
 
     fn set_capture_fields(&mut self, capture: bool) {

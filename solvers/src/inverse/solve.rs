@@ -95,6 +95,51 @@ struct Accepted<S> {
     iterations: usize,
 }
 
+/// The film's rate outputs of a step taken in parts (substeps of the error control, halves of
+/// a split step): their mean over the step, each part weighted by its share of the step —
+/// side leakage, supply and recirculated flow, friction torques and power loss are flows of
+/// the step, whose time integrals the step's parts add up (a part's rates are its own: those
+/// of the implicit step that ends it). The state outputs (force, h_min, p_max, cavitated
+/// fraction) stay those of the step's end, `last`.
+fn step_mean_rates(last: &FilmResponse, parts: &[(f64, FilmResponse)]) -> FilmResponse {
+    let mut mean = last.clone();
+    let weighted = |f: &dyn Fn(&FilmResponse) -> f64| parts.iter().map(|(w, r)| w * f(r)).sum();
+    mean.side_leakage = [
+        weighted(&|r| r.side_leakage[0]),
+        weighted(&|r| r.side_leakage[1]),
+    ];
+    for (g, q) in mean.supply_flow.iter_mut().enumerate() {
+        *q = weighted(&|r| r.supply_flow.get(g).copied().unwrap_or(0.0));
+    }
+    mean.recirculated_flow = weighted(&|r| r.recirculated_flow);
+    mean.friction_torque_journal = weighted(&|r| r.friction_torque_journal);
+    mean.friction_torque_bearing = weighted(&|r| r.friction_torque_bearing);
+    mean.power_loss = weighted(&|r| r.power_loss);
+    mean
+}
+
+/// The step's side leakage and supply flows as its boundary volumes (`start` → `end`,
+/// [`FilmModel::boundary_volumes`]) over its length `dt`, where the film model has them in the
+/// layout of `response` (two ends, then each groove); else `response` as it is.
+fn step_flows_from_volumes(
+    response: &mut FilmResponse,
+    start: Option<Vec<f64>>,
+    end: Option<Vec<f64>>,
+    dt: f64,
+) {
+    let (Some(y0), Some(y1)) = (start, end) else {
+        return;
+    };
+    if y0.len() != y1.len() || y1.len() != 2 + response.supply_flow.len() {
+        return;
+    }
+    let flow = |k: usize| (y1[k] - y0[k]) / dt;
+    response.side_leakage = [flow(0), flow(1)];
+    for (g, q) in response.supply_flow.iter_mut().enumerate() {
+        *q = flow(2 + g);
+    }
+}
+
 fn norm(v: [f64; 2]) -> f64 {
     v[0].hypot(v[1])
 }
@@ -968,6 +1013,13 @@ impl<S: Clone> Orbit<S> {
         } else {
             None
         };
+        let mut response = acc.response;
+        step_flows_from_volumes(
+            &mut response,
+            film.boundary_volumes(&self.state),
+            film.boundary_volumes(&acc.state),
+            dt,
+        );
         self.prev2 = self.prev;
         self.prev = self.eps;
         self.eps = acc.eps;
@@ -975,7 +1027,7 @@ impl<S: Clone> Orbit<S> {
         Ok(Marched {
             accepted: Accepted {
                 eps: acc.eps,
-                response: acc.response,
+                response,
                 state: (),
                 residual: acc.residual,
                 iterations: acc.iterations,
@@ -1031,7 +1083,8 @@ impl Stepper<'_> {
     /// by [`Stepper::advance`] with the splits left below `max_step_splits`; Newton's guess for
     /// each substep is the quadratic through the last three positions (`history` = ε at the
     /// step's start and the two full steps before). Returns the end with the Newton iterations
-    /// of all substeps.
+    /// of all substeps, the substeps' mean rates ([`step_mean_rates`]) and the film history of
+    /// one step from `state` ([`FilmModel::join_substeps`]).
     fn substeps<F: FilmModel + ?Sized>(
         &mut self,
         film: &mut F,
@@ -1055,6 +1108,7 @@ impl Stepper<'_> {
         self.jac.valid = false;
         let mut iterations = 0;
         let mut last: Option<Accepted<F::State>> = None;
+        let mut parts = Vec::with_capacity(n);
         for j in 1..=n {
             let t = if j == n { leg.t_end } else { t0 + j as f64 * h };
             let (eps, from) = match &last {
@@ -1074,11 +1128,14 @@ impl Stepper<'_> {
             let acc = self.advance(film, from, sub, drive, level)?;
             iterations += acc.iterations;
             points.push((t, acc.eps));
+            parts.push((1.0 / n as f64, acc.response.clone()));
             last = Some(acc);
         }
         self.jac.valid = false;
         let mut acc = last.expect("at least two substeps");
         acc.iterations = iterations;
+        acc.response = step_mean_rates(&acc.response, &parts);
+        film.join_substeps(state, &mut acc.state, leg.dt);
         Ok(acc)
     }
 
@@ -1131,7 +1188,7 @@ impl Stepper<'_> {
                     drive,
                     depth + 1,
                 )?;
-                let last = self.advance(
+                let mut last = self.advance(
                     film,
                     &first.state,
                     Leg {
@@ -1143,9 +1200,14 @@ impl Stepper<'_> {
                     },
                     drive,
                     depth + 1,
-                );
+                )?;
                 self.jac.valid = false;
-                last
+                last.response = step_mean_rates(
+                    &last.response,
+                    &[(0.5, first.response), (0.5, last.response.clone())],
+                );
+                film.join_substeps(state, &mut last.state, leg.dt);
+                Ok(last)
             }
             other => other,
         }

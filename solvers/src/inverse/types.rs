@@ -203,6 +203,19 @@ pub struct NoObserver;
 impl InverseObserver for NoObserver {}
 
 /// One time step of the final cycle.
+///
+/// The state outputs (ε, film force, h_min, p_max, cavitated fraction) are those at the step's
+/// end. The flows and power are the step's:
+/// - side leakage and supply flow: for a film model with boundary volumes
+///   ([`super::FilmModel::boundary_volumes`], the Reynolds film) the volume of the step over
+///   its length, integrated by the scheme of each (sub)step exactly as the film content is —
+///   so the cycle means balance (mean supply = mean side leakage over a periodic cycle) to the
+///   film's mass balance for every scheme and step pattern; for BDF2 and Crank–Nicolson this
+///   is ≈ the flow at mid-step, for backward Euler the flow at the step's end. Without
+///   volumes: the flow at the end, or the mean of the parts' for a step taken in parts;
+/// - recirculated flow, friction torques, power loss: at the step's end, or for a step the
+///   local error control took in substeps (or a Newton failure split in halves) the mean of
+///   its parts' weighted by their lengths.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InverseStep {
     /// Time within the final cycle (s), in (0, τ].

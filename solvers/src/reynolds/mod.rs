@@ -344,6 +344,28 @@ pub struct FilmState {
     /// step was solved; None: rigid). The next step's old content h φ takes it, so that the
     /// squeeze term sees the deformation's rate.
     pub deformation: Option<FilmDeformation>,
+    /// The boundary flows at this level, m³/s: side leakage at z = −L/2 and +L/2, then the
+    /// supply of each groove ([`FilmSolution::side_leakage`], [`FilmSolution::supply_flow`];
+    /// empty at a start state). Crank–Nicolson's next volume takes them.
+    pub boundary_flow: Vec<f64>,
+    /// The volume of oil that has left through each end and entered through each groove since
+    /// the start state (m³, the layout of `boundary_flow`), integrated by the time scheme of
+    /// each step — the same discrete time integral the scheme applies to the film content:
+    ///
+    /// ```text
+    ///   backward Euler   Y^{n+1} = Y^n + Δt q^{n+1}
+    ///   Crank–Nicolson   Y^{n+1} = Y^n + Δt (q^{n+1} + q^n)/2
+    ///   BDF2             a₀ Y^{n+1} − a₁ Y^n + a₂ Y^{n−1} = Δt q^{n+1}
+    /// ```
+    ///
+    /// so that over any steps the content's change equals the volume in minus the volume out
+    /// to the film's mass balance, whatever the step lengths (variable-step BDF2 does not sum
+    /// Δt q to the content's change where the step length changes: with Y it does, Y being
+    /// integrated exactly as the content is). Y^{n+1} − Y^n is the step's volume: divided by
+    /// Δt, the step's mean flow (for BDF2 and Crank–Nicolson ≈ the flow at mid-step).
+    pub boundary_volume: Vec<f64>,
+    /// `boundary_volume` at the level before (what BDF2 needs with `previous_level`).
+    pub previous_boundary_volume: Option<Vec<f64>>,
 }
 
 /// Everything a solve returns (SI units; angles in rad; locations as (θ, z)).
@@ -509,6 +531,43 @@ pub(crate) struct Prepared {
 }
 
 /// The converged discrete film of one solve (crate internal).
+/// The boundary volumes Y^{n+1} ([`FilmState::boundary_volume`]) after a step of length `dt`
+/// from `state` with boundary flows `flows` at the new level, by the scheme the step took
+/// (`scheme`: BDF2 only when it had the level before and kept it — not its backward-Euler start
+/// or positivity fallback —, Crank–Nicolson only with the old level's net outflow). A start
+/// state without volumes counts from zero; a Crank–Nicolson step from a state without flows
+/// takes the new level's.
+fn boundary_volume_after(
+    state: &FilmState,
+    dt: f64,
+    flows: &[f64],
+    scheme: TimeScheme,
+) -> Vec<f64> {
+    let n = flows.len();
+    let fits = |v: &[f64]| v.len() == n;
+    let old: Vec<f64> = if fits(&state.boundary_volume) {
+        state.boundary_volume.clone()
+    } else {
+        vec![0.0; n]
+    };
+    match (
+        scheme,
+        &state.previous_level,
+        &state.previous_boundary_volume,
+    ) {
+        (TimeScheme::Bdf2, Some((_, dt_prev)), Some(before)) if fits(before) => {
+            let (a0, a1, a2) = TimeScheme::bdf2_coefficients(dt / dt_prev);
+            (0..n)
+                .map(|k| (dt * flows[k] + a1 * old[k] - a2 * before[k]) / a0)
+                .collect()
+        }
+        (TimeScheme::CrankNicolson, ..) if fits(&state.boundary_flow) => (0..n)
+            .map(|k| old[k] + 0.5 * dt * (flows[k] + state.boundary_flow[k]))
+            .collect(),
+        _ => (0..n).map(|k| old[k] + dt * flows[k]).collect(),
+    }
+}
+
 pub(crate) struct Core {
     grid: Grid,
     h: Vec<f64>,
@@ -760,6 +819,9 @@ impl ReynoldsSolver {
             net_outflow: None,
             previous_level: None,
             deformation: None,
+            boundary_flow: Vec::new(),
+            boundary_volume: Vec::new(),
+            previous_boundary_volume: None,
         }
     }
 
@@ -853,7 +915,7 @@ impl ReynoldsSolver {
             .params
             .viscosity_model
             .map_or(0.0, |m| m.pressure_coefficient);
-        let core = if alpha > 0.0 {
+        let (core, used_bdf2) = if alpha > 0.0 {
             // Picard on the viscosity field, as in steady solves, started from the pressure of
             // the start film (the previous step's or Newton iterate's film, close to this one:
             // the low, physical branch of p ∝ μ₀ exp(α p)).
@@ -867,10 +929,11 @@ impl ReynoldsSolver {
             let mut change = f64::INFINITY;
             let mut converged = None;
             for _ in 0..VISCOSITY_PICARD_MAX {
-                let core = self.step_core(input, bdf2, backward_euler, warm.clone())?;
+                let (core, used_bdf2) =
+                    self.step_core(input, bdf2, backward_euler, warm.clone())?;
                 change = self.update_viscosity_pressure(&core, alpha);
                 if change <= VISCOSITY_PICARD_TOLERANCE {
-                    converged = Some(core);
+                    converged = Some((core, used_bdf2));
                     break;
                 }
                 warm = (core.psi.clone(), core.g.clone());
@@ -893,7 +956,23 @@ impl ReynoldsSolver {
         if self.deformation.is_some() {
             deformed_min_film(&mut sol, &core);
         }
-        let new_state = self.state_after(&core, input, old.content);
+        let mut new_state = self.state_after(&core, input, old.content);
+        let flows: Vec<f64> = sol
+            .side_leakage
+            .iter()
+            .chain(sol.supply_flow.iter())
+            .copied()
+            .collect();
+        let scheme = if used_bdf2 {
+            TimeScheme::Bdf2
+        } else if old.outflow.is_some() {
+            TimeScheme::CrankNicolson
+        } else {
+            TimeScheme::BackwardEuler
+        };
+        new_state.boundary_volume = boundary_volume_after(state, input.dt, &flows, scheme);
+        new_state.previous_boundary_volume = Some(state.boundary_volume.clone());
+        new_state.boundary_flow = flows;
         Ok((sol, new_state))
     }
 
@@ -926,6 +1005,24 @@ impl ReynoldsSolver {
             None => check_eps(state.eccentricity_ratio),
             Some(_) => Ok(()),
         }
+    }
+
+    /// The film content h φ of `state` at its nodes (m; h with the state's deformation): what
+    /// a BDF2 step takes as the level before ([`FilmState::previous_level`]).
+    pub fn film_content(&self, state: &FilmState) -> Array2<f64> {
+        let h = FilmThickness::new(
+            &self.grid,
+            self.params.clearance,
+            state.eccentricity_ratio,
+            state.deformation.as_ref(),
+        );
+        let content = h
+            .node
+            .iter()
+            .zip(state.density_ratio.iter())
+            .map(|(h, phi)| h * phi)
+            .collect();
+        Array2::from_shape_vec(state.density_ratio.dim(), content).expect("grid shape")
     }
 
     /// What the time scheme takes from the old level: the content hⁿφⁿ, the net outflow Dⁿ
@@ -1019,7 +1116,8 @@ impl ReynoldsSolver {
     }
 
     /// The film state after a step: φ and g of the converged core, its net outflow (the next
-    /// Crank–Nicolson step's Dⁿ) and this step's old content (the next BDF2 step's cⁿ⁻¹).
+    /// Crank–Nicolson step's Dⁿ) and this step's old content (the next BDF2 step's cⁿ⁻¹); the
+    /// boundary flows and volumes are set by the caller from the step's outputs.
     fn state_after(&self, core: &Core, input: &StepInput, old_content: Vec<f64>) -> FilmState {
         let mut out = vec![0.0; self.grid.len()];
         discretization::net_outflow(&core.grid, &core.flux_theta, &core.flux_z, &mut out);
@@ -1033,6 +1131,10 @@ impl ReynoldsSolver {
             net_outflow: Some(field(out)),
             previous_level: Some((field(old_content), input.dt)),
             deformation: self.deformation.clone(),
+            // The boundary flows and volumes need the film's outputs: the caller's.
+            boundary_flow: Vec::new(),
+            boundary_volume: Vec::new(),
+            previous_boundary_volume: None,
         }
     }
 
@@ -1334,14 +1436,15 @@ impl ReynoldsSolver {
 
     /// One time step's discrete problem at the current viscosity field: BDF2 when the state
     /// has a previous level (`bdf2`: Δt/a₀ and the history), with backward Euler as the
-    /// positivity fallback; backward Euler (or Crank–Nicolson) otherwise.
+    /// positivity fallback; backward Euler (or Crank–Nicolson) otherwise. Returns the core and
+    /// whether it is a BDF2 step.
     fn step_core(
         &mut self,
         input: &StepInput,
         bdf2: Option<&(f64, Vec<f64>)>,
         backward_euler: TimeTerm<'_>,
         start: (Vec<f64>, Vec<f64>),
-    ) -> Result<Core, ReynoldsError> {
+    ) -> Result<(Core, bool), ReynoldsError> {
         match bdf2 {
             Some((dt_eff, history)) => {
                 let time = TimeTerm::Step {
@@ -1356,21 +1459,25 @@ impl ReynoldsSolver {
                     Some(start.clone()),
                 ) {
                     // Positivity fallback: the same step by backward Euler.
-                    Err(ReynoldsError::NegativeFilmFraction { .. }) => self.solve_core(
-                        input.eccentricity_ratio,
-                        &input.conditions,
-                        backward_euler,
-                        Some(start),
-                    ),
-                    other => other,
+                    Err(ReynoldsError::NegativeFilmFraction { .. }) => self
+                        .solve_core(
+                            input.eccentricity_ratio,
+                            &input.conditions,
+                            backward_euler,
+                            Some(start),
+                        )
+                        .map(|core| (core, false)),
+                    other => other.map(|core| (core, true)),
                 }
             }
-            None => self.solve_core(
-                input.eccentricity_ratio,
-                &input.conditions,
-                backward_euler,
-                Some(start),
-            ),
+            None => self
+                .solve_core(
+                    input.eccentricity_ratio,
+                    &input.conditions,
+                    backward_euler,
+                    Some(start),
+                )
+                .map(|core| (core, false)),
         }
     }
 

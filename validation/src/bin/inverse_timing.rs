@@ -111,6 +111,14 @@ impl FilmModel for TimedFilm {
         self.inner.state_vector(state)
     }
 
+    fn join_substeps(&self, start: &FilmState, end: &mut FilmState, dt: f64) {
+        self.inner.join_substeps(start, end, dt)
+    }
+
+    fn boundary_volumes(&self, state: &FilmState) -> Option<Vec<f64>> {
+        self.inner.boundary_volumes(state)
+    }
+
     fn state_from_vector(
         &self,
         template: &FilmState,

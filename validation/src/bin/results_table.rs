@@ -4,7 +4,10 @@
 //! prints one markdown row per bearing and method: T_eff / T_out, μ_eff, the cycle minimum of
 //! h_min, the maximum ε, the cycle means of the side flow and the power loss, the peak pressure,
 //! the mobility method's deviation from the rigorous one as the application computed it
-//! (`mobility_deviation_percent`), and each method's status. It measures nothing itself: the
+//! (`mobility_deviation_percent`), and each method's status; then the step-to-step smoothness
+//! of each bearing's side leakage and supply flow over the periodic cycle, with the drive's
+//! beside them (`jbearing_validation::smoothness`, read from `results/CASE.h5`). It measures
+//! nothing itself: the
 //! first line names the machine it runs on (the batch's, when run right after it) and the time
 //! the summaries were written.
 //!
@@ -27,6 +30,7 @@ use jbearing_validation::generated_docs::{
     docs_page, fixed, machine, signed, take_report, write_generated_block,
 };
 use jbearing_validation::report;
+use jbearing_validation::smoothness::smoothness;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -208,6 +212,14 @@ fn main() -> Result<()> {
     for row in rows {
         report!("{row}");
     }
+    report!(
+        "\nStep-to-step smoothness of the rigorous cycle (`jbearing_validation::smoothness`: \
+         over the output steps of the periodic cycle, relative to each series' range; the drive \
+         — load magnitude, feed pressure — sampled at the same steps for comparison):\n"
+    );
+    for row in smoothness_rows(&results)? {
+        report!("{row}");
+    }
     if write_docs {
         let page = docs_page("results.md");
         write_generated_block(&page, COMMAND, &take_report())
@@ -215,6 +227,66 @@ fn main() -> Result<()> {
         eprintln!("wrote the block of {COMMAND:?} in {}", page.display());
     }
     Ok(())
+}
+
+/// The smoothness table: per bearing the side leakage, the supply flow and the drive (|W|,
+/// the feed pressure where it varies) of `results/CASE.h5`'s rigorous group, with the measures
+/// of [`smoothness`] and the crank angles where they are largest.
+fn smoothness_rows(results: &Path) -> Result<Vec<String>> {
+    let mut rows = vec![
+        "| bearing | series | largest second difference (crank) | zigzag amplitude (crank) | \
+         sign changes of the step difference |"
+            .to_string(),
+        "|---|---|---:|---:|---:|".to_string(),
+    ];
+    for (case, label) in [("compressor_main", "main"), ("compressor_rod", "rod")] {
+        let path = results.join(format!("{case}.h5"));
+        let f = hdf5_metno::File::open(&path).with_context(|| format!("{}", path.display()))?;
+        let g = f
+            .group("rigorous")
+            .with_context(|| format!("{}: no rigorous group", path.display()))?;
+        let series = |name: &str| -> Result<Vec<f64>> {
+            g.dataset(name)
+                .and_then(|d| d.read_raw::<f64>())
+                .with_context(|| format!("{}: rigorous/{name}", path.display()))
+        };
+        let crank = series("crank_angle")?;
+        let (wx, wy) = (series("load_x")?, series("load_y")?);
+        let load: Vec<f64> = wx.iter().zip(&wy).map(|(x, y)| x.hypot(*y)).collect();
+        for (name, x) in [
+            ("side leakage", series("side_leakage")?),
+            ("supply flow", series("supply_flow")?),
+            ("drive: load magnitude", load),
+            ("drive: feed pressure", series("feed_pressure")?),
+        ] {
+            if x.len() != crank.len() {
+                bail!(
+                    "{}: rigorous/{name} has {} samples, crank_angle {}",
+                    path.display(),
+                    x.len(),
+                    crank.len()
+                );
+            }
+            let Some(s) = smoothness(&x) else {
+                // A constant series (the main bearing's feed) has no measure.
+                continue;
+            };
+            let pct = |v: f64| format!("{:.1} %", 100.0 * v);
+            rows.push(format!(
+                "| {label} | {name} | {} ({:.0}°) | {} | {} of {} |",
+                pct(s.max_second_difference),
+                crank[s.max_second_difference_at],
+                if s.zigzag > 0.0 {
+                    format!("{:.2} % ({:.0}°)", 100.0 * s.zigzag, crank[s.zigzag_at])
+                } else {
+                    "0".to_string()
+                },
+                s.sign_changes,
+                x.len()
+            ));
+        }
+    }
+    Ok(rows)
 }
 
 /// The solver statistics of one run from its `CASE.h5`.
