@@ -105,6 +105,33 @@
 //! nothing (the remaining slow mode is not a coarse-solve accuracy problem); freezing the
 //! full nodes pinned by a cavitated neighbour in the line sweeps made it worse.
 //!
+//! # Precision
+//!
+//! The V-cycle runs in single precision ([`Work`] = `f32`): the level operators, masks,
+//! vectors, defects, transfers and the line substitutions. The hierarchy is *built* in `f64`
+//! — the Galerkin products, the line factorizations with their pivot checks, the coarsest LU
+//! — and rounded value by value (relative 2⁻²⁴) to the cycle's copies; the coarsest solve
+//! stays `f64`. A preconditioner of flexible GMRES only has to cluster the spectrum (one
+//! V-cycle reduces the error by ~0.1, far above the 6e-8 of single precision): the Krylov
+//! vectors, A z, the residuals and the stopping test stay `f64`, so the solves still reach
+//! 1e-10 of the flux scale and agree with the sparse-LU oracle as before (`multigrid/tests.rs`),
+//! and the Krylov iterations per film step of the inverse timing case did not change
+//! (6.1 on 120 × 31). This is the inner–outer scheme of mixed-precision iterative refinement
+//! (\[Saad1993\]: an inexact, even varying, preconditioner is what FGMRES allows). The pivots
+//! are checked in `f64` exactly as before (64 ε_f64 of the row scale), so every line that
+//! factors in `f64` still factors; only the stored reciprocal pivots and multipliers are
+//! rounded, a relative perturbation of 2⁻²⁴ per factor, which the substitutions of these
+//! column-dominant M-matrix lines (multipliers ≤ 1) do not amplify. The stiff rows — β-sized
+//! pressure couplings of a full node, a cavitated node's Couette-sized diagonal next to them —
+//! are SI magnitudes far inside the range of `f32` (1e-38 … 3e38); a reciprocal pivot that
+//! would still round to 0 or ∞ is an error ([`InterleavedFactors::round_from`]), not an
+//! infinity. The right-hand side is scaled by a power of two to max |r| ≈ 1 before rounding
+//! (exact, undone on the way out), and its entries below 2⁻⁶⁰ of the largest are dropped, so
+//! no value of the cycle comes near the subnormal range (slow on x86). Half the memory
+//! traffic and twice the lanes per vector, with the cycle compiled for AVX2 as well (run-time
+//! dispatch, as the line kernels): 12 % fewer instructions and ~12 % less time per film step
+//! on the 120 × 31 inverse cycle (docs/performance.md, "Fifth pass").
+//!
 //! # Convergence (measured; tests in `multigrid/tests.rs`)
 //!
 //! Stationary V-cycle contraction ≈ 0.1 per cycle on the full film, independent of the grid.
@@ -132,7 +159,11 @@ use faer::sparse::{SparseColMat, Triplet};
 use super::ReynoldsError;
 use super::discretization::Stencil;
 use super::grid::{Grid, NodeKind};
-use crate::tridiagonal::InterleavedFactors;
+use crate::tridiagonal::{InterleavedFactors, Real};
+
+/// The precision of the V-cycle's vectors, operators and line substitutions (module docs,
+/// "Precision"). The hierarchy is built in `f64` and rounded to it.
+pub(crate) type Work = f32;
 
 /// Coarsening stops at the first level with n_θ ≤ this; that level is solved by sparse LU
 /// (n_θ · n_z ≤ 8 · n_z unknowns: 8 × 31 on the default grid).
@@ -151,6 +182,10 @@ pub(crate) const COARSEST_THETA: usize = 8;
 /// 721 per run-in + cycle, counted with a per-row diagonal measure of the drift; the row-sum
 /// measure kept here reuses at least as often).
 pub(crate) const MAX_REUSE_DRIFT: f64 = 0.25;
+
+/// Entries of the scaled right-hand side of [`Multigrid::apply`] (max |r| ≈ 1) below this
+/// (2⁻⁶⁰ ≈ 8.7e-19, 2⁻³⁶ below the single-precision rounding) are dropped.
+const DROP_BELOW: f64 = 1.0 / (1u64 << 60) as f64;
 
 /// What [`Multigrid::setup`] did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -173,12 +208,13 @@ const S: usize = at(0, -1);
 const N: usize = at(0, 1);
 
 /// A nine-point periodic-in-θ stencil on an n_θ × n_z level, `c[o][i · n_z + j]`, o = [`at`].
-/// Entries that would reach past z = ends are zero.
+/// Entries that would reach past z = ends are zero. Built in `f64`; the V-cycle applies its
+/// rounding to [`Work`].
 #[derive(Debug, Clone, Default)]
-pub(crate) struct Stencil9 {
+pub(crate) struct Stencil9<T: Real = f64> {
     pub nt: usize,
     pub nz: usize,
-    pub c: [Vec<f64>; 9],
+    pub c: [Vec<T>; 9],
     /// The corners are zero (the fine level): the defect skips them.
     five: bool,
 }
@@ -204,9 +240,23 @@ impl Stencil9 {
         self.c[N].copy_from_slice(&st.n);
         self.five = true;
     }
+}
+
+impl<T: Real> Stencil9<T> {
+    /// This stencil becomes `a` rounded to `T` (no allocation when the size is unchanged).
+    fn round_from(&mut self, a: &Stencil9) {
+        self.nt = a.nt;
+        self.nz = a.nz;
+        self.five = a.five;
+        for (dst, src) in self.c.iter_mut().zip(&a.c) {
+            dst.clear();
+            dst.extend(src.iter().map(|&v| T::from_f64(v)));
+        }
+    }
 
     /// y = b − A x on axial line i (the n_z rows i · n_z + j).
-    fn defect_line(&self, i: usize, x: &[f64], b: &[f64], y: &mut [f64]) {
+    #[inline(always)]
+    fn defect_line(&self, i: usize, x: &[T], b: &[T], y: &mut [T]) {
         let (nt, nz) = (self.nt, self.nz);
         let iw = if i == 0 { nt - 1 } else { i - 1 };
         let ie = if i + 1 == nt { 0 } else { i + 1 };
@@ -221,7 +271,7 @@ impl Stencil9 {
         let (bl, yl) = (&b[base..base + nz], &mut y[base..base + nz]);
         // End rows (no neighbour beyond the end).
         for j in [0, last] {
-            let mut s = 0.0;
+            let mut s = T::ZERO;
             for d in 0..3 {
                 if j > 0 {
                     s += c(3 * d)[j] * xl[d][j - 1];
@@ -240,13 +290,13 @@ impl Stencil9 {
             return;
         }
         let m = nz - 2;
-        fn inner(v: &[f64], m: usize) -> &[f64] {
+        fn inner<T>(v: &[T], m: usize) -> &[T] {
             &v[1..1 + m]
         }
-        fn below(v: &[f64], m: usize) -> &[f64] {
+        fn below<T>(v: &[T], m: usize) -> &[T] {
             &v[..m]
         }
-        fn above(v: &[f64], m: usize) -> &[f64] {
+        fn above<T>(v: &[T], m: usize) -> &[T] {
             &v[2..2 + m]
         }
         let (c0, c1, c2, c3, c4, c5, c6, c7, c8) = (
@@ -294,7 +344,8 @@ impl Stencil9 {
         }
     }
 
-    fn defect(&self, x: &[f64], b: &[f64], y: &mut [f64]) {
+    #[inline(always)]
+    fn defect(&self, x: &[T], b: &[T], y: &mut [T]) {
         for i in 0..self.nt {
             self.defect_line(i, x, b, y);
         }
@@ -424,59 +475,80 @@ pub(crate) fn galerkin(fine: &Stencil9, fmask: &[f64], cmask: &[f64], coarse: &m
     }
 }
 
-/// r_c = R r_f = Pᵀ r_f (module docs).
-pub(crate) fn restrict(
+/// r_c = R r_f = Pᵀ r_f (module docs). Column by column: each fine child's whole z-line at
+/// once (contiguous, vectorized), the children in their fixed order.
+#[inline(always)]
+pub(crate) fn restrict<T: Real>(
     nt: usize,
     nz: usize,
-    fmask: &[f64],
-    cmask: &[f64],
-    rf: &[f64],
-    rc: &mut [f64],
+    fmask: &[T],
+    cmask: &[T],
+    rf: &[T],
+    rc: &mut [T],
 ) {
     for ic in 0..coarse_len(nt) {
         let (kids, nk) = children(ic, nt);
-        for j in 0..nz {
-            let kc = ic * nz + j;
-            let mut v = 0.0;
-            for &(f, w) in &kids[..nk] {
-                let k = f * nz + j;
-                v += w * fmask[k] * rf[k];
+        let dst = &mut rc[ic * nz..(ic + 1) * nz];
+        dst.fill(T::ZERO);
+        for &(f, w) in &kids[..nk] {
+            let w = T::from_f64(w);
+            let (m, r) = (&fmask[f * nz..(f + 1) * nz], &rf[f * nz..(f + 1) * nz]);
+            for ((d, m), r) in dst.iter_mut().zip(m).zip(r) {
+                *d += w * *m * *r;
             }
-            rc[kc] = cmask[kc] * v;
+        }
+        for (d, c) in dst.iter_mut().zip(&cmask[ic * nz..(ic + 1) * nz]) {
+            *d = *c * *d;
         }
     }
 }
 
-/// x_f += P x_c (module docs).
-pub(crate) fn prolong_add(nt: usize, nz: usize, fmask: &[f64], xc: &[f64], xf: &mut [f64]) {
+/// x_f += P x_c (module docs), a whole z-line of fine column f at once.
+#[inline(always)]
+pub(crate) fn prolong_add<T: Real>(nt: usize, nz: usize, fmask: &[T], xc: &[T], xf: &mut [T]) {
     for f in 0..nt {
         let (par, np) = parents(f, nt);
-        for j in 0..nz {
-            let k = f * nz + j;
-            let mut v = 0.0;
-            for &(ic, w) in &par[..np] {
-                v += w * xc[ic * nz + j];
+        let dst = &mut xf[f * nz..(f + 1) * nz];
+        let m = &fmask[f * nz..(f + 1) * nz];
+        let (i0, w0) = par[0];
+        let c0 = &xc[i0 * nz..(i0 + 1) * nz];
+        let w0 = T::from_f64(w0);
+        if np == 1 {
+            for ((d, m), c0) in dst.iter_mut().zip(m).zip(c0) {
+                *d += *m * (w0 * *c0);
             }
-            xf[k] += fmask[k] * v;
+        } else {
+            let (i1, w1) = par[1];
+            let c1 = &xc[i1 * nz..(i1 + 1) * nz];
+            let w1 = T::from_f64(w1);
+            for (((d, m), c0), c1) in dst.iter_mut().zip(m).zip(c0).zip(c1) {
+                *d += *m * (w0 * *c0 + w1 * *c1);
+            }
         }
     }
 }
 
-/// One level of the hierarchy: its operator, activity mask, factored line matrices and
-/// scratch vectors.
+/// One level of the hierarchy: its operator, activity mask and factored line matrices, built
+/// in `f64`, their rounding to [`Work`] that the V-cycle uses, and its scratch vectors.
 #[derive(Debug, Clone, Default)]
 struct MgLevel {
     a: Stencil9,
     mask: Vec<f64>,
-    circumferential: InterleavedFactors,
+    /// The line factorizations in `f64` (pivots checked there), before rounding.
+    circumferential64: InterleavedFactors,
+    axial64: [InterleavedFactors; 2],
+    /// The cycle's operator, mask and line factors ([`Work`]).
+    aw: Stencil9<Work>,
+    maskw: Vec<Work>,
+    circumferential: InterleavedFactors<Work>,
     /// Axial lines of even and of odd i (zebra), line l = i div 2 at `j · lines + l`.
-    axial: [InterleavedFactors; 2],
-    x: Vec<f64>,
-    b: Vec<f64>,
-    t: Vec<f64>,
-    y: Vec<f64>,
-    line_rhs: Vec<f64>,
-    line_sol: Vec<f64>,
+    axial: [InterleavedFactors<Work>; 2],
+    x: Vec<Work>,
+    b: Vec<Work>,
+    t: Vec<Work>,
+    y: Vec<Work>,
+    line_rhs: Vec<Work>,
+    line_sol: Vec<Work>,
 }
 
 fn line_error(level: usize, what: &str, e: crate::tridiagonal::TridiagonalError) -> ReynoldsError {
@@ -491,7 +563,8 @@ impl MgLevel {
         (self.a.nt - parity).div_ceil(2)
     }
 
-    /// Factors the circumferential lines and both zebra halves of the axial lines.
+    /// Factors the circumferential lines and both zebra halves of the axial lines (in `f64`,
+    /// then rounded to [`Work`]) and rounds the operator and the mask.
     fn factor(&mut self, level: usize) -> Result<(), ReynoldsError> {
         let (nt, nz) = (self.a.nt, self.a.nz);
         let n = nt * nz;
@@ -499,10 +572,12 @@ impl MgLevel {
             v.clear();
             v.resize(n, 0.0);
         }
+        self.round_operator();
         if level == 0 {
             // Only the finest level sweeps circumferential lines (module docs).
-            self.circumferential
+            self.circumferential64
                 .factor_periodic(nt, nz, &self.a.c[W], &self.a.c[C], &self.a.c[E])
+                .and_then(|()| self.circumferential.round_from(&self.circumferential64))
                 .map_err(|e| line_error(level, "circumferential", e))?;
         }
         let half = nt.div_ceil(2) * nz;
@@ -521,8 +596,9 @@ impl MgLevel {
                 }
             }
             let m = lines * nz;
-            self.axial[parity]
+            self.axial64[parity]
                 .factor_dirichlet(nz, lines, &sub[..m], &diag[..m], &sup[..m])
+                .and_then(|()| self.axial[parity].round_from(&self.axial64[parity]))
                 .map_err(|e| line_error(level, "axial", e))?;
         }
         self.line_rhs.clear();
@@ -532,8 +608,17 @@ impl MgLevel {
         Ok(())
     }
 
+    /// The cycle's operator and mask: `a` and `mask` rounded to [`Work`].
+    fn round_operator(&mut self) {
+        self.aw.round_from(&self.a);
+        self.maskw.clear();
+        self.maskw
+            .extend(self.mask.iter().map(|&m| Work::from_f64(m)));
+    }
+
     /// x += A_θ⁻¹ (b − A x): every circumferential line at once (z-neighbours lagged).
     /// `x_is_zero`: x = 0 on entry, so the defect is b itself.
+    #[inline(always)]
     fn circumferential_sweep(
         &mut self,
         level: usize,
@@ -546,7 +631,7 @@ impl MgLevel {
                 .solve(&self.b, &mut self.x)
                 .map_err(|e| line_error(level, "circumferential", e));
         }
-        self.a.defect(&self.x, &self.b, &mut self.t);
+        self.aw.defect(&self.x, &self.b, &mut self.t);
         self.circumferential
             .solve(&self.t, &mut self.y)
             .map_err(|e| line_error(level, "circumferential", e))?;
@@ -561,11 +646,12 @@ impl MgLevel {
     /// even lines and have not changed since (for odd n_θ the lines n_θ − 1 and 0 are both
     /// even; every odd line's neighbours are still even). Half a defect pass saved per cycle
     /// and level.
+    #[inline(always)]
     fn defect_after_zebra(&mut self) {
         let (nt, nz) = (self.a.nt, self.a.nz);
         for i in 0..nt {
             if i % 2 == 0 {
-                self.a.defect_line(i, &self.x, &self.b, &mut self.t);
+                self.aw.defect_line(i, &self.x, &self.b, &mut self.t);
             } else {
                 self.t[i * nz..(i + 1) * nz].fill(0.0);
             }
@@ -574,12 +660,13 @@ impl MgLevel {
 
     /// x += A_z⁻¹ (b − A x) on the axial lines of one parity (θ-neighbours lagged; the lines of
     /// the other parity are the only neighbours, so the two halves are Gauss–Seidel ordered).
+    #[inline(always)]
     fn axial_sweep(&mut self, level: usize, parity: usize) -> Result<(), ReynoldsError> {
         let (nt, nz) = (self.a.nt, self.a.nz);
         let lines = self.lines_of(parity);
         for l in 0..lines {
             let i = 2 * l + parity;
-            self.a.defect_line(i, &self.x, &self.b, &mut self.t);
+            self.aw.defect_line(i, &self.x, &self.b, &mut self.t);
             for j in 0..nz {
                 self.line_rhs[j * lines + l] = self.t[i * nz + j];
             }
@@ -734,6 +821,7 @@ impl Multigrid {
             v.clear();
             v.resize(n, 0.0);
         }
+        last.round_operator();
         self.coarsest = Some(factor_coarsest(&last.a)?);
         Ok(())
     }
@@ -776,54 +864,99 @@ impl Multigrid {
         }
     }
 
-    /// z = M⁻¹ r: one cycle from z = 0 (module docs).
+    /// z = M⁻¹ r: one cycle from z = 0 (module docs), in [`Work`] precision. r is scaled by
+    /// the power of two nearest to 1 / max|r| on the way in and z back on the way out (both
+    /// exact), so the cycle's values sit near 1 whatever the size of r; entries below
+    /// [`DROP_BELOW`] of max|r| are dropped (they could reach the subnormal range of `f32`,
+    /// which x86 cores compute slowly, and lie far below the cycle's own rounding).
     pub(crate) fn apply(&mut self, r: &[f64], z: &mut [f64]) -> Result<(), ReynoldsError> {
-        self.levels[0].b.copy_from_slice(r);
-        self.cycle(0)?;
-        z.copy_from_slice(&self.levels[0].x);
+        let rmax = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if rmax == 0.0 {
+            z.fill(0.0);
+            return Ok(());
+        }
+        if !rmax.is_finite() {
+            return Err(ReynoldsError::LinearSolve {
+                solver: "multigrid",
+                detail: "non-finite right-hand side of the V-cycle".into(),
+            });
+        }
+        // 2^k ≈ 1 / rmax, |k| ≤ 1000: exact in f64, and r · 2^k is exact.
+        let k = (-rmax.log2().round()).clamp(-1000.0, 1000.0) as i32;
+        let (down, up) = (2f64.powi(k), 2f64.powi(-k));
+        for (b, &v) in self.levels[0].b.iter_mut().zip(r) {
+            let v = v * down;
+            *b = if v.abs() < DROP_BELOW {
+                0.0
+            } else {
+                Work::from_f64(v)
+            };
+        }
+        self.vcycle()?;
+        for (zk, &x) in z.iter_mut().zip(&self.levels[0].x) {
+            *zk = x.to_f64() * up;
+        }
         Ok(())
     }
 
-    /// x_l ≈ A_l⁻¹ b_l from x_l = 0: one V(1, 1)-cycle below level l.
-    fn cycle(&mut self, l: usize) -> Result<(), ReynoldsError> {
+    /// The V-cycle from x = 0 on every level, with AVX2 when the CPU has it (the same
+    /// operations in the same order, wider vectors: no fused multiply-add is enabled, so both
+    /// copies give the same bits; as in [`crate::tridiagonal`]).
+    fn vcycle(&mut self) -> Result<(), ReynoldsError> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 (checked just above), the only requirement of
+            // calling a function compiled with `target_feature(enable = "avx2")`.
+            return unsafe { self.vcycle_avx2() };
+        }
+        self.vcycle_generic()
+    }
+
+    /// [`Multigrid::vcycle_generic`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn vcycle_avx2(&mut self) -> Result<(), ReynoldsError> {
+        self.vcycle_generic()
+    }
+
+    /// x_0 ≈ A_0⁻¹ b_0 from x_0 = 0: one V(1, 1)-cycle (module docs), level by level down to
+    /// the coarsest and back up.
+    #[inline(always)]
+    fn vcycle_generic(&mut self) -> Result<(), ReynoldsError> {
         let depth = self.levels.len();
-        if l + 1 == depth {
-            return self.solve_coarsest();
-        }
-        {
+        for l in 0..depth - 1 {
             // Pre-smoothing: circumferential lines (from x = 0 the defect is b), then the
-            // axial lines, even i before odd i.
-            let lv = &mut self.levels[l];
-            if l == 0 {
-                lv.circumferential_sweep(l, true)?;
-            } else {
-                lv.x.iter_mut().for_each(|v| *v = 0.0);
-            }
-            lv.axial_sweep(l, 0)?;
-            lv.axial_sweep(l, 1)?;
-        }
-        {
+            // axial lines, even i before odd i; the defect restricted to the next level.
             let (fine, coarse) = self.levels.split_at_mut(l + 1);
             let f = &mut fine[l];
+            if l == 0 {
+                f.circumferential_sweep(l, true)?;
+            } else {
+                f.x.fill(0.0);
+            }
+            f.axial_sweep(l, 0)?;
+            f.axial_sweep(l, 1)?;
             f.defect_after_zebra();
             restrict(
                 f.a.nt,
                 f.a.nz,
-                &f.mask,
-                &coarse[0].mask,
+                &f.maskw,
+                &coarse[0].maskw,
                 &f.t,
                 &mut coarse[0].b,
             );
         }
-        self.cycle(l + 1)?;
-        let (fine, coarse) = self.levels.split_at_mut(l + 1);
-        let f = &mut fine[l];
-        prolong_add(f.a.nt, f.a.nz, &f.mask, &coarse[0].x, &mut f.x);
-        // Post-smoothing in the reverse order.
-        f.axial_sweep(l, 1)?;
-        f.axial_sweep(l, 0)?;
-        if l == 0 {
-            f.circumferential_sweep(l, false)?;
+        self.solve_coarsest()?;
+        for l in (0..depth - 1).rev() {
+            let (fine, coarse) = self.levels.split_at_mut(l + 1);
+            let f = &mut fine[l];
+            prolong_add(f.a.nt, f.a.nz, &f.maskw, &coarse[0].x, &mut f.x);
+            // Post-smoothing in the reverse order.
+            f.axial_sweep(l, 1)?;
+            f.axial_sweep(l, 0)?;
+            if l == 0 {
+                f.circumferential_sweep(l, false)?;
+            }
         }
         Ok(())
     }
@@ -835,10 +968,10 @@ impl Multigrid {
             detail: "no factorization (setup failed or not run)".into(),
         })?;
         let n = last.b.len();
-        let rhs = Col::<f64>::from_fn(n, |k| last.b[k]);
+        let rhs = Col::<f64>::from_fn(n, |k| last.b[k].to_f64());
         let sol = lu.solve(&rhs);
         for k in 0..n {
-            let v = sol[k];
+            let v = Work::from_f64(sol[k]);
             if !v.is_finite() {
                 return Err(ReynoldsError::NonFinite {
                     what: "multigrid coarsest-level solution",

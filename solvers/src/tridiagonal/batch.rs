@@ -210,19 +210,19 @@ impl<'a> Batch<'a> {
 }
 
 #[inline(always)]
-pub(super) fn load<const L: usize>(s: &[f64], at: usize) -> [f64; L] {
+pub(super) fn load<T: Copy, const L: usize>(s: &[T], at: usize) -> [T; L] {
     let c = &s[at..at + L];
     std::array::from_fn(|k| c[k])
 }
 
 #[inline(always)]
-pub(super) fn store<const L: usize>(s: &mut [f64], at: usize, v: &[f64; L]) {
+pub(super) fn store<T: Copy, const L: usize>(s: &mut [T], at: usize, v: &[T; L]) {
     s[at..at + L].copy_from_slice(v);
 }
 
 /// Elementwise map of lane arrays (a fixed-trip-count loop that LLVM vectorizes).
 #[inline(always)]
-pub(super) fn lanes<const L: usize>(f: impl FnMut(usize) -> f64) -> [f64; L] {
+pub(super) fn lanes<T, const L: usize>(f: impl FnMut(usize) -> T) -> [T; L] {
     std::array::from_fn(f)
 }
 
@@ -406,11 +406,11 @@ impl ChunkKernel for Dirichlet<'_> {
         };
         let d: [f64; L] = bt.row(bt.diag, 0, l0);
         let c: [f64; L] = bt.row(bt.rhs, 0, l0);
-        let scale = lanes::<L>(|k| d[k].abs() + a[k].abs());
+        let scale = lanes::<f64, L>(|k| d[k].abs() + a[k].abs());
         check::<L, LOCATE>(&mut ok, &d, &scale, l0, 0)?;
-        let r = lanes::<L>(|k| 1.0 / d[k]);
-        let mut u_prev = lanes::<L>(|k| a[k] * r[k]);
-        let mut y_prev = lanes::<L>(|k| c[k] * r[k]);
+        let r = lanes::<f64, L>(|k| 1.0 / d[k]);
+        let mut u_prev = lanes::<f64, L>(|k| a[k] * r[k]);
+        let mut y_prev = lanes::<f64, L>(|k| c[k] * r[k]);
         store(u, 0, &u_prev);
         store(x, l0, &y_prev);
 
@@ -424,12 +424,12 @@ impl ChunkKernel for Dirichlet<'_> {
             let b: [f64; L] = bt.row(bt.sub, i, l0);
             let d: [f64; L] = bt.row(bt.diag, i, l0);
             let c: [f64; L] = bt.row(bt.rhs, i, l0);
-            let pivot = lanes::<L>(|k| d[k] - b[k] * u_prev[k]);
-            let scale = lanes::<L>(|k| b[k].abs() + d[k].abs() + a[k].abs());
+            let pivot = lanes::<f64, L>(|k| d[k] - b[k] * u_prev[k]);
+            let scale = lanes::<f64, L>(|k| b[k].abs() + d[k].abs() + a[k].abs());
             check::<L, LOCATE>(&mut ok, &pivot, &scale, l0, i)?;
-            let r = lanes::<L>(|k| 1.0 / pivot[k]);
-            u_prev = lanes::<L>(|k| a[k] * r[k]);
-            y_prev = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
+            let r = lanes::<f64, L>(|k| 1.0 / pivot[k]);
+            u_prev = lanes::<f64, L>(|k| a[k] * r[k]);
+            y_prev = lanes::<f64, L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
             store(u, i * L, &u_prev);
             store(x, i * lines + l0, &y_prev);
         }
@@ -444,7 +444,7 @@ impl ChunkKernel for Dirichlet<'_> {
             let at = i * lines + l0;
             let y: [f64; L] = load(x, at);
             let ui: [f64; L] = load(u, i * L);
-            x_next = lanes::<L>(|k| y[k] - ui[k] * x_next[k]);
+            x_next = lanes::<f64, L>(|k| y[k] - ui[k] * x_next[k]);
             for k in 0..L {
                 finite[k] &= x_next[k].is_finite();
             }
@@ -484,12 +484,12 @@ impl ChunkKernel for Periodic<'_> {
         let d: [f64; L] = bt.row(bt.diag, 0, l0);
         let a: [f64; L] = bt.row(bt.sup, 0, l0);
         let c: [f64; L] = bt.row(bt.rhs, 0, l0);
-        let scale = lanes::<L>(|k| b[k].abs() + d[k].abs() + a[k].abs());
+        let scale = lanes::<f64, L>(|k| b[k].abs() + d[k].abs() + a[k].abs());
         check::<L, LOCATE>(&mut ok, &d, &scale, l0, 0)?;
-        let r = lanes::<L>(|k| 1.0 / d[k]);
-        let mut u_prev = lanes::<L>(|k| a[k] * r[k]);
-        let mut f_prev = lanes::<L>(|k| b[k] * r[k]);
-        let mut y_prev = lanes::<L>(|k| c[k] * r[k]);
+        let r = lanes::<f64, L>(|k| 1.0 / d[k]);
+        let mut u_prev = lanes::<f64, L>(|k| a[k] * r[k]);
+        let mut f_prev = lanes::<f64, L>(|k| b[k] * r[k]);
+        let mut y_prev = lanes::<f64, L>(|k| c[k] * r[k]);
         store(u, 0, &u_prev);
         store(f, 0, &f_prev);
         store(x, l0, &y_prev);
@@ -498,12 +498,12 @@ impl ChunkKernel for Periodic<'_> {
         let d_last: [f64; L] = bt.row(bt.diag, last, l0);
         let a_last: [f64; L] = bt.row(bt.sup, last, l0);
         let c_last: [f64; L] = bt.row(bt.rhs, last, l0);
-        let scale_last = lanes::<L>(|k| b_last[k].abs() + d_last[k].abs() + a_last[k].abs());
-        let carried_tol = lanes::<L>(|k| FLUSH_RTOL * scale_last[k]);
+        let scale_last = lanes::<f64, L>(|k| b_last[k].abs() + d_last[k].abs() + a_last[k].abs());
+        let carried_tol = lanes::<f64, L>(|k| FLUSH_RTOL * scale_last[k]);
         let mut carried = a_last;
-        let mut d_star = lanes::<L>(|k| d_last[k] - carried[k] * f_prev[k]);
-        let mut c_star = lanes::<L>(|k| c_last[k] - carried[k] * y_prev[k]);
-        carried = lanes::<L>(|k| flush(-carried[k] * u_prev[k], carried_tol[k]));
+        let mut d_star = lanes::<f64, L>(|k| d_last[k] - carried[k] * f_prev[k]);
+        let mut c_star = lanes::<f64, L>(|k| c_last[k] - carried[k] * y_prev[k]);
+        carried = lanes::<f64, L>(|k| flush(-carried[k] * u_prev[k], carried_tol[k]));
 
         // Rows 1 … m-3.
         for i in 1..last - 1 {
@@ -511,19 +511,19 @@ impl ChunkKernel for Periodic<'_> {
             let d: [f64; L] = bt.row(bt.diag, i, l0);
             let a: [f64; L] = bt.row(bt.sup, i, l0);
             let c: [f64; L] = bt.row(bt.rhs, i, l0);
-            let pivot = lanes::<L>(|k| d[k] - b[k] * u_prev[k]);
-            let scale = lanes::<L>(|k| b[k].abs() + d[k].abs() + a[k].abs());
+            let pivot = lanes::<f64, L>(|k| d[k] - b[k] * u_prev[k]);
+            let scale = lanes::<f64, L>(|k| b[k].abs() + d[k].abs() + a[k].abs());
             check::<L, LOCATE>(&mut ok, &pivot, &scale, l0, i)?;
-            let r = lanes::<L>(|k| 1.0 / pivot[k]);
-            u_prev = lanes::<L>(|k| a[k] * r[k]);
-            f_prev = lanes::<L>(|k| flush(-(b[k] * f_prev[k]) * r[k], FLUSH_RTOL));
-            y_prev = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
+            let r = lanes::<f64, L>(|k| 1.0 / pivot[k]);
+            u_prev = lanes::<f64, L>(|k| a[k] * r[k]);
+            f_prev = lanes::<f64, L>(|k| flush(-(b[k] * f_prev[k]) * r[k], FLUSH_RTOL));
+            y_prev = lanes::<f64, L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
             store(u, i * L, &u_prev);
             store(f, i * L, &f_prev);
             store(x, i * lines + l0, &y_prev);
-            d_star = lanes::<L>(|k| d_star[k] - carried[k] * f_prev[k]);
-            c_star = lanes::<L>(|k| c_star[k] - carried[k] * y_prev[k]);
-            carried = lanes::<L>(|k| flush(-carried[k] * u_prev[k], carried_tol[k]));
+            d_star = lanes::<f64, L>(|k| d_star[k] - carried[k] * f_prev[k]);
+            c_star = lanes::<f64, L>(|k| c_star[k] - carried[k] * y_prev[k]);
+            carried = lanes::<f64, L>(|k| flush(-carried[k] * u_prev[k], carried_tol[k]));
         }
 
         // Row m-2: its super-diagonal entry lies in the fill-in column m-1.
@@ -532,25 +532,25 @@ impl ChunkKernel for Periodic<'_> {
         let d: [f64; L] = bt.row(bt.diag, i, l0);
         let a: [f64; L] = bt.row(bt.sup, i, l0);
         let c: [f64; L] = bt.row(bt.rhs, i, l0);
-        let pivot = lanes::<L>(|k| d[k] - b[k] * u_prev[k]);
-        let scale = lanes::<L>(|k| b[k].abs() + d[k].abs() + a[k].abs());
+        let pivot = lanes::<f64, L>(|k| d[k] - b[k] * u_prev[k]);
+        let scale = lanes::<f64, L>(|k| b[k].abs() + d[k].abs() + a[k].abs());
         check::<L, LOCATE>(&mut ok, &pivot, &scale, l0, i)?;
-        let r = lanes::<L>(|k| 1.0 / pivot[k]);
-        let f_m2 = lanes::<L>(|k| (a[k] - b[k] * f_prev[k]) * r[k]);
-        let y_m2 = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
+        let r = lanes::<f64, L>(|k| 1.0 / pivot[k]);
+        let f_m2 = lanes::<f64, L>(|k| (a[k] - b[k] * f_prev[k]) * r[k]);
+        let y_m2 = lanes::<f64, L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
         // The last row's column m-2 holds b_{m-1} besides the carried entry.
-        carried = lanes::<L>(|k| carried[k] + b_last[k]);
-        d_star = lanes::<L>(|k| d_star[k] - carried[k] * f_m2[k]);
-        c_star = lanes::<L>(|k| c_star[k] - carried[k] * y_m2[k]);
+        carried = lanes::<f64, L>(|k| carried[k] + b_last[k]);
+        d_star = lanes::<f64, L>(|k| d_star[k] - carried[k] * f_m2[k]);
+        c_star = lanes::<f64, L>(|k| c_star[k] - carried[k] * y_m2[k]);
         check::<L, LOCATE>(&mut ok, &d_star, &scale_last, l0, last)?;
         if ok.contains(&false) {
             return Err(ChunkError::Pivot(ok.map(|o| !o)));
         }
 
         // Back substitution.
-        let x_last = lanes::<L>(|k| c_star[k] / d_star[k]);
+        let x_last = lanes::<f64, L>(|k| c_star[k] / d_star[k]);
         store(x, last * lines + l0, &x_last);
-        let mut x_next = lanes::<L>(|k| y_m2[k] - f_m2[k] * x_last[k]);
+        let mut x_next = lanes::<f64, L>(|k| y_m2[k] - f_m2[k] * x_last[k]);
         store(x, i * lines + l0, &x_next);
         let mut finite: [bool; L] =
             std::array::from_fn(|k| x_last[k].is_finite() & x_next[k].is_finite());
@@ -559,7 +559,7 @@ impl ChunkKernel for Periodic<'_> {
             let y: [f64; L] = load(x, at);
             let ui: [f64; L] = load(u, i * L);
             let fi: [f64; L] = load(f, i * L);
-            x_next = lanes::<L>(|k| (y[k] - ui[k] * x_next[k]) - fi[k] * x_last[k]);
+            x_next = lanes::<f64, L>(|k| (y[k] - ui[k] * x_next[k]) - fi[k] * x_last[k]);
             for k in 0..L {
                 finite[k] &= x_next[k].is_finite();
             }

@@ -37,7 +37,7 @@
 //! have at least 8 nodes); shorter ones are rejected ([`TridiagonalError::BatchSizeMismatch`]).
 
 use super::batch::{lanes, load, store};
-use super::{FLUSH_RTOL, TridiagonalError, flush, pivot_ok};
+use super::{FLUSH_RTOL, Real, TridiagonalError, flush, pivot_ok};
 
 /// Which line kind a factorization holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -50,23 +50,30 @@ enum Kind {
 /// The factors of a batch of `lines` lines of `m` unknowns, stored interleaved like the batch
 /// kernels' inputs (row i of line l at `i · lines + l`). Reusable: a new factorization
 /// overwrites the old one without allocating when the size is unchanged.
+///
+/// The factorization is always computed in `f64` (`InterleavedFactors<f64>`, the default
+/// type); [`round_from`](Self::round_from) rounds it to `InterleavedFactors<f32>`, whose
+/// solves run in single precision (the multigrid smoother, `reynolds::multigrid`): half the
+/// memory traffic and twice the lanes per vector, with the pivots checked in `f64`. An `f32`
+/// solve is not bit for bit the `f64` one: every stored factor carries a relative rounding of
+/// 2⁻²⁴, and the substitutions round at 2⁻²⁴ too.
 #[derive(Debug, Clone, Default)]
-pub struct InterleavedFactors {
+pub struct InterleavedFactors<T: Real = f64> {
     kind: Kind,
     m: usize,
     lines: usize,
     /// b_i (row i ≥ 1; row 0 unused).
-    sub: Vec<f64>,
+    sub: Vec<T>,
     /// r_i = 1 / d'_i (periodic: rows 0 … m−2).
-    recip: Vec<f64>,
+    recip: Vec<T>,
     /// u_i = a_i r_i (periodic: rows 0 … m−3).
-    upper: Vec<f64>,
+    upper: Vec<T>,
     /// Periodic: fill-in f_i (rows 0 … m−2).
-    fill: Vec<f64>,
+    fill: Vec<T>,
     /// Periodic: the entry A_i of the last row that row i removes (rows 0 … m−2).
-    carried: Vec<f64>,
+    carried: Vec<T>,
     /// Periodic: the last row's final diagonal d*, per line.
-    d_star: Vec<f64>,
+    d_star: Vec<T>,
 }
 
 /// Checks the slice lengths (m · lines each) and m ≥ `min_m` (m = 0 is [`TridiagonalError::Empty`]).
@@ -106,7 +113,7 @@ fn zero_pivot(line: usize, row: usize, pivot: f64, scale: f64) -> TridiagonalErr
     }
 }
 
-impl InterleavedFactors {
+impl<T: Real> InterleavedFactors<T> {
     fn resize(&mut self, kind: Kind, m: usize, lines: usize, n: usize) {
         self.kind = kind;
         self.m = m;
@@ -118,9 +125,9 @@ impl InterleavedFactors {
             &mut self.fill,
             &mut self.carried,
         ] {
-            v.resize(n, 0.0);
+            v.resize(n, T::ZERO);
         }
-        self.d_star.resize(lines, 0.0);
+        self.d_star.resize(lines, T::ZERO);
     }
 
     /// Forgets the factorization (shape 0 × 0).
@@ -134,6 +141,52 @@ impl InterleavedFactors {
         (self.m, self.lines)
     }
 
+    /// This factorization becomes `f` rounded to `T` (round to nearest, value by value; no
+    /// allocation when the size is unchanged). The pivots were checked in `f64` when `f` was
+    /// factored; a reciprocal pivot or d* that rounds to 0 or ∞ in `T` (|value| beyond the
+    /// range of `T`) is an error here, naming its line and row, so that a solve never divides
+    /// by or multiplies with a value the `f64` factorization did not have.
+    pub fn round_from(&mut self, f: &InterleavedFactors) -> Result<(), TridiagonalError> {
+        let n = f.m * f.lines;
+        self.resize(f.kind, f.m, f.lines, n);
+        let round = |dst: &mut [T], src: &[f64]| {
+            for (d, s) in dst.iter_mut().zip(src) {
+                *d = T::from_f64(*s);
+            }
+        };
+        round(&mut self.sub, &f.sub);
+        round(&mut self.recip, &f.recip);
+        round(&mut self.upper, &f.upper);
+        round(&mut self.fill, &f.fill);
+        round(&mut self.carried, &f.carried);
+        round(&mut self.d_star, &f.d_star);
+        let rows = if f.kind == Kind::Periodic {
+            f.m - 1
+        } else {
+            f.m
+        };
+        for l in 0..f.lines {
+            for i in 0..rows {
+                let k = i * f.lines + l;
+                let r = self.recip[k];
+                if r == T::ZERO || !r.finite() {
+                    self.invalidate();
+                    return Err(zero_pivot(l, i, 1.0 / f.recip[k], f64::NAN));
+                }
+            }
+            if f.kind == Kind::Periodic {
+                let d = self.d_star[l];
+                if d == T::ZERO || !d.finite() {
+                    self.invalidate();
+                    return Err(zero_pivot(l, f.m - 1, f.d_star[l], f64::NAN));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl InterleavedFactors {
     /// Factors `lines` Dirichlet lines (Thomas; `sub` of row 0 and `sup` of row m−1 ignored).
     /// On an error the factorization is empty: a later [`solve`](Self::solve) is an error, not
     /// a solve with half-overwritten factors.
@@ -285,10 +338,12 @@ impl InterleavedFactors {
         }
         Ok(())
     }
+}
 
+impl<T: Real> InterleavedFactors<T> {
     /// Solves every line of the factorization for `rhs` (interleaved, `m · lines` values) into
-    /// `x`. The result is bit for bit that of the one-shot solver of the same lines.
-    pub fn solve(&self, rhs: &[f64], x: &mut [f64]) -> Result<(), TridiagonalError> {
+    /// `x`. For `f64` the result is bit for bit that of the one-shot solver of the same lines.
+    pub fn solve(&self, rhs: &[T], x: &mut [T]) -> Result<(), TridiagonalError> {
         let n = self.m * self.lines;
         if rhs.len() != n || x.len() != n {
             return Err(TridiagonalError::BatchSizeMismatch {
@@ -319,12 +374,12 @@ impl InterleavedFactors {
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn solve_all_avx2(&self, rhs: &[f64], x: &mut [f64]) -> Result<(), TridiagonalError> {
+    fn solve_all_avx2(&self, rhs: &[T], x: &mut [T]) -> Result<(), TridiagonalError> {
         self.solve_all(rhs, x)
     }
 
     #[inline(always)]
-    fn solve_all(&self, rhs: &[f64], x: &mut [f64]) -> Result<(), TridiagonalError> {
+    fn solve_all(&self, rhs: &[T], x: &mut [T]) -> Result<(), TridiagonalError> {
         const LANES: usize = super::LANES;
         let lines = self.lines;
         let mut l0 = 0;
@@ -351,20 +406,20 @@ impl InterleavedFactors {
         let (line, row) = (0..lines)
             .find_map(|l| {
                 (0..self.m)
-                    .find(|&i| !x[i * lines + l].is_finite())
+                    .find(|&i| !x[i * lines + l].finite())
                     .map(|i| (l, i))
             })
             .unwrap_or((0, 0));
         Err(TridiagonalError::NonFiniteSolutionInLine {
             line,
             row,
-            value: x[row * lines + line],
+            value: x[row * lines + line].to_f64(),
         })
     }
 
     /// Lanes l0 … l0+L−1; returns whether every unknown is finite.
     #[inline(always)]
-    fn chunk<const L: usize>(&self, l0: usize, rhs: &[f64], x: &mut [f64]) -> bool {
+    fn chunk<const L: usize>(&self, l0: usize, rhs: &[T], x: &mut [T]) -> bool {
         match self.kind {
             Kind::Dirichlet => self.chunk_dirichlet::<L>(l0, rhs, x),
             Kind::Periodic => self.chunk_periodic::<L>(l0, rhs, x),
@@ -372,27 +427,27 @@ impl InterleavedFactors {
     }
 
     #[inline(always)]
-    fn chunk_dirichlet<const L: usize>(&self, l0: usize, rhs: &[f64], x: &mut [f64]) -> bool {
+    fn chunk_dirichlet<const L: usize>(&self, l0: usize, rhs: &[T], x: &mut [T]) -> bool {
         let (m, lines) = (self.m, self.lines);
-        let c: [f64; L] = load(rhs, l0);
-        let r: [f64; L] = load(&self.recip, l0);
-        let mut y_prev = lanes::<L>(|k| c[k] * r[k]);
+        let c: [T; L] = load(rhs, l0);
+        let r: [T; L] = load(&self.recip, l0);
+        let mut y_prev = lanes::<T, L>(|k| c[k] * r[k]);
         store(x, l0, &y_prev);
         for i in 1..m {
             let at = i * lines + l0;
-            let (b, c, r): ([f64; L], [f64; L], [f64; L]) =
+            let (b, c, r): ([T; L], [T; L], [T; L]) =
                 (load(&self.sub, at), load(rhs, at), load(&self.recip, at));
-            y_prev = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
+            y_prev = lanes::<T, L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
             store(x, at, &y_prev);
         }
         let mut x_next = y_prev;
-        let mut finite = x_next.map(f64::is_finite);
+        let mut finite = x_next.map(T::finite);
         for i in (0..m - 1).rev() {
             let at = i * lines + l0;
-            let (y, u): ([f64; L], [f64; L]) = (load(x, at), load(&self.upper, at));
-            x_next = lanes::<L>(|k| y[k] - u[k] * x_next[k]);
+            let (y, u): ([T; L], [T; L]) = (load(x, at), load(&self.upper, at));
+            x_next = lanes::<T, L>(|k| y[k] - u[k] * x_next[k]);
             for k in 0..L {
-                finite[k] &= x_next[k].is_finite();
+                finite[k] &= x_next[k].finite();
             }
             store(x, at, &x_next);
         }
@@ -400,47 +455,47 @@ impl InterleavedFactors {
     }
 
     #[inline(always)]
-    fn chunk_periodic<const L: usize>(&self, l0: usize, rhs: &[f64], x: &mut [f64]) -> bool {
+    fn chunk_periodic<const L: usize>(&self, l0: usize, rhs: &[T], x: &mut [T]) -> bool {
         let (m, lines) = (self.m, self.lines);
         let last = m - 1;
         // Row 0 and the fused last row.
-        let c: [f64; L] = load(rhs, l0);
-        let r: [f64; L] = load(&self.recip, l0);
-        let mut y_prev = lanes::<L>(|k| c[k] * r[k]);
+        let c: [T; L] = load(rhs, l0);
+        let r: [T; L] = load(&self.recip, l0);
+        let mut y_prev = lanes::<T, L>(|k| c[k] * r[k]);
         store(x, l0, &y_prev);
-        let c_last: [f64; L] = load(rhs, last * lines + l0);
-        let carried: [f64; L] = load(&self.carried, l0);
-        let mut c_star = lanes::<L>(|k| c_last[k] - carried[k] * y_prev[k]);
+        let c_last: [T; L] = load(rhs, last * lines + l0);
+        let carried: [T; L] = load(&self.carried, l0);
+        let mut c_star = lanes::<T, L>(|k| c_last[k] - carried[k] * y_prev[k]);
         // Rows 1 … m-2.
         for i in 1..last {
             let at = i * lines + l0;
-            let (b, c, r, carried): ([f64; L], [f64; L], [f64; L], [f64; L]) = (
+            let (b, c, r, carried): ([T; L], [T; L], [T; L], [T; L]) = (
                 load(&self.sub, at),
                 load(rhs, at),
                 load(&self.recip, at),
                 load(&self.carried, at),
             );
-            y_prev = lanes::<L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
+            y_prev = lanes::<T, L>(|k| (c[k] - b[k] * y_prev[k]) * r[k]);
             store(x, at, &y_prev);
-            c_star = lanes::<L>(|k| c_star[k] - carried[k] * y_prev[k]);
+            c_star = lanes::<T, L>(|k| c_star[k] - carried[k] * y_prev[k]);
         }
         // Back substitution.
-        let d_star: [f64; L] = load(&self.d_star, l0);
-        let x_last = lanes::<L>(|k| c_star[k] / d_star[k]);
+        let d_star: [T; L] = load(&self.d_star, l0);
+        let x_last = lanes::<T, L>(|k| c_star[k] / d_star[k]);
         store(x, last * lines + l0, &x_last);
         let i = last - 1;
-        let f_m2: [f64; L] = load(&self.fill, i * lines + l0);
-        let mut x_next = lanes::<L>(|k| y_prev[k] - f_m2[k] * x_last[k]);
+        let f_m2: [T; L] = load(&self.fill, i * lines + l0);
+        let mut x_next = lanes::<T, L>(|k| y_prev[k] - f_m2[k] * x_last[k]);
         store(x, i * lines + l0, &x_next);
         let mut finite: [bool; L] =
-            std::array::from_fn(|k| x_last[k].is_finite() & x_next[k].is_finite());
+            std::array::from_fn(|k| x_last[k].finite() & x_next[k].finite());
         for i in (0..last - 1).rev() {
             let at = i * lines + l0;
-            let (y, u, f): ([f64; L], [f64; L], [f64; L]) =
+            let (y, u, f): ([T; L], [T; L], [T; L]) =
                 (load(x, at), load(&self.upper, at), load(&self.fill, at));
-            x_next = lanes::<L>(|k| (y[k] - u[k] * x_next[k]) - f[k] * x_last[k]);
+            x_next = lanes::<T, L>(|k| (y[k] - u[k] * x_next[k]) - f[k] * x_last[k]);
             for k in 0..L {
-                finite[k] &= x_next[k].is_finite();
+                finite[k] &= x_next[k].finite();
             }
             store(x, at, &x_next);
         }
@@ -569,6 +624,75 @@ mod tests {
             fac.factor_periodic(2, nl, &d, &d, &d).is_err(),
             "periodic lines need m ≥ 3"
         );
+    }
+
+    /// The factors rounded to `f32` solve the same lines to single precision: for these
+    /// lines (pivots ≥ 1.5 of the row's magnitude, so every |u_i|, |f_i| < 1 and the
+    /// substitutions do not amplify errors beyond a few roundings per row), the `f32` solution
+    /// is within 1e-5 of the largest `f64` unknown (2⁻²⁴ ≈ 6e-8 per rounding, ~30 roundings per
+    /// line of 31 rows and a margin). A reciprocal pivot beyond the range of `f32` is an error
+    /// naming its line, not an infinity.
+    #[test]
+    fn factors_rounded_to_single_precision_solve_to_single_precision() {
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        let mut fac = InterleavedFactors::default();
+        let mut fac32 = InterleavedFactors::<f32>::default();
+        for m in [3usize, 8, 31, 120] {
+            for nl in [1usize, 7, 16, 31, 37] {
+                let n = m * nl;
+                let (mut b, mut d, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+                for k in 0..n {
+                    let mag = 10f64.powf(3.0 * rng.next());
+                    b[k] = 0.5 * mag * rng.next();
+                    a[k] = 0.5 * mag * rng.next();
+                    d[k] = mag * (2.5 + rng.next());
+                }
+                for periodic in [false, true] {
+                    if periodic {
+                        fac.factor_periodic(m, nl, &b, &d, &a).unwrap();
+                    } else {
+                        fac.factor_dirichlet(m, nl, &b, &d, &a).unwrap();
+                    }
+                    fac32.round_from(&fac).unwrap();
+                    let c: Vec<f64> = (0..n).map(|_| rng.next() * 1e3).collect();
+                    let c32: Vec<f32> = c.iter().map(|&v| v as f32).collect();
+                    let (mut x, mut x32) = (vec![0.0; n], vec![0.0f32; n]);
+                    fac.solve(&c, &mut x).unwrap();
+                    fac32.solve(&c32, &mut x32).unwrap();
+                    let xmax = x.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+                    let err = x
+                        .iter()
+                        .zip(&x32)
+                        .fold(0.0f64, |s, (v, w)| s.max((v - f64::from(*w)).abs()));
+                    assert!(
+                        err <= 1e-5 * xmax,
+                        "m = {m}, lines = {nl}, periodic {periodic}: {err:e} of {xmax:e}"
+                    );
+                }
+            }
+        }
+        // Line 2 of 4 has tiny rows (a pivot of 1e-300 is sound in f64 against its row's
+        // scale of the same size), whose reciprocal overflows f32.
+        let (m, nl) = (5, 4);
+        let mut d = vec![1.0; m * nl];
+        for i in 0..m {
+            d[i * nl + 2] = 1e-300;
+        }
+        let zero = vec![0.0; m * nl];
+        fac.factor_dirichlet(m, nl, &zero, &d, &zero).unwrap();
+        let e = fac32.round_from(&fac).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TridiagonalError::ZeroPivotInLine {
+                    line: 2,
+                    row: 0,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert_eq!(fac32.shape(), (0, 0), "nothing left to solve with");
     }
 
     #[test]

@@ -155,6 +155,81 @@ mod factored;
 pub use batch::{BatchWorkspace, LANES, cyclic_thomas_solve_interleaved, thomas_solve_interleaved};
 pub use factored::InterleavedFactors;
 
+/// The floating-point types the factored line solves run in: `f64` (every factorization, and
+/// the solves of the ADI preconditioner) and `f32` (the solves of the multigrid V-cycle, from
+/// factors computed in `f64` and rounded, [`InterleavedFactors::round_from`]).
+pub trait Real:
+    Copy
+    + Default
+    + PartialEq
+    + PartialOrd
+    + std::fmt::Debug
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Mul<Output = Self>
+    + std::ops::Div<Output = Self>
+    + std::ops::AddAssign
+    + private::Sealed
+    + 'static
+{
+    /// 0.
+    const ZERO: Self;
+    /// The nearest value of this type (`as`: round to nearest).
+    fn from_f64(v: f64) -> Self;
+    /// The value as `f64` (exact).
+    fn to_f64(self) -> f64;
+    /// Neither infinite nor NaN.
+    fn finite(self) -> bool;
+    /// |v|.
+    fn magnitude(self) -> Self;
+}
+
+mod private {
+    pub trait Sealed {}
+    impl Sealed for f32 {}
+    impl Sealed for f64 {}
+}
+
+impl Real for f64 {
+    const ZERO: Self = 0.0;
+    #[inline(always)]
+    fn from_f64(v: f64) -> Self {
+        v
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
+    #[inline(always)]
+    fn magnitude(self) -> Self {
+        self.abs()
+    }
+}
+
+impl Real for f32 {
+    const ZERO: Self = 0.0;
+    #[inline(always)]
+    fn from_f64(v: f64) -> Self {
+        v as f32
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        f64::from(self)
+    }
+    #[inline(always)]
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
+    #[inline(always)]
+    fn magnitude(self) -> Self {
+        self.abs()
+    }
+}
+
 /// Why a line solve failed.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum TridiagonalError {
