@@ -1445,40 +1445,30 @@ impl ReynoldsSolver {
         backward_euler: TimeTerm<'_>,
         start: (Vec<f64>, Vec<f64>),
     ) -> Result<(Core, bool), ReynoldsError> {
-        match bdf2 {
-            Some((dt_eff, history)) => {
-                let time = TimeTerm::Step {
-                    dt: *dt_eff,
-                    old_content: history,
-                    old_outflow: None,
-                };
-                match self.solve_core(
-                    input.eccentricity_ratio,
-                    &input.conditions,
-                    time,
-                    Some(start.clone()),
-                ) {
-                    // Positivity fallback: the same step by backward Euler.
-                    Err(ReynoldsError::NegativeFilmFraction { .. }) => self
-                        .solve_core(
-                            input.eccentricity_ratio,
-                            &input.conditions,
-                            backward_euler,
-                            Some(start),
-                        )
-                        .map(|core| (core, false)),
-                    other => other.map(|core| (core, true)),
-                }
+        if let Some((dt_eff, history)) = bdf2 {
+            let time = TimeTerm::Step {
+                dt: *dt_eff,
+                old_content: history,
+                old_outflow: None,
+            };
+            match self.solve_core(
+                input.eccentricity_ratio,
+                &input.conditions,
+                time,
+                Some(start.clone()),
+            ) {
+                // Positivity fallback: the same step by backward Euler, below.
+                Err(ReynoldsError::NegativeFilmFraction { .. }) => {}
+                other => return other.map(|core| (core, true)),
             }
-            None => self
-                .solve_core(
-                    input.eccentricity_ratio,
-                    &input.conditions,
-                    backward_euler,
-                    Some(start),
-                )
-                .map(|core| (core, false)),
         }
+        self.solve_core(
+            input.eccentricity_ratio,
+            &input.conditions,
+            backward_euler,
+            Some(start),
+        )
+        .map(|core| (core, false))
     }
 
     /// One Picard update of the viscosity field's pressure: the pressures above p_cav of the
