@@ -978,8 +978,9 @@ impl<S: Clone> Orbit<S> {
     /// time `drive` takes (within the cycle for the cycles; `at` names the step in messages):
     /// the quadratic predictor's guess, [`Stepper::advance`] (halving the step where Newton fails) — for
     /// step `cycle_step` of a cycle under the local error control, [`Orbit::controlled_step`] —,
-    /// optionally the accepted step solved once more with the fields captured, and the orbit
-    /// moved on.
+    /// with `capture_fields` the fields of the accepted film (of the last substep of a refined
+    /// step: the film the recorded answer ends on; every trial of the step captures them, which
+    /// costs array copies, not a film solve), and the orbit moved on.
     #[allow(clippy::too_many_arguments)]
     fn march_step<F: FilmModel<State = S> + ?Sized>(
         &mut self,
@@ -998,21 +999,18 @@ impl<S: Clone> Orbit<S> {
             dt,
             at,
         };
-        let acc = match cycle_step.filter(|_| stepper.control.is_some()) {
-            Some(i) => self.controlled_step(stepper, film, leg, drive, i)?,
-            None => stepper.advance(film, &self.state, leg, drive, 0)?,
-        };
-        let fields = if capture_fields {
-            let (_, cond) = drive(t)?;
+        if capture_fields {
             film.set_capture_fields(true);
-            let again = film.step(&self.state, acc.eps, dt, &cond);
-            film.set_capture_fields(false);
-            stepper.stats.evaluations += 1;
-            let (resp, _) = again.map_err(|source| at.film_error(acc.eps, source))?;
-            resp.fields
-        } else {
-            None
+        }
+        let taken = match cycle_step.filter(|_| stepper.control.is_some()) {
+            Some(i) => self.controlled_step(stepper, film, leg, drive, i),
+            None => stepper.advance(film, &self.state, leg, drive, 0),
         };
+        if capture_fields {
+            film.set_capture_fields(false);
+        }
+        let mut acc = taken?;
+        let fields = acc.response.fields.take();
         let mut response = acc.response;
         step_flows_from_volumes(
             &mut response,
