@@ -40,7 +40,8 @@
 //! of its loose solves (1e-6 of the flux scale) instead of adding the tight solve.
 //!
 //! The exact Jacobian is kept across iterates and time steps while each iterate along it
-//! reduces |r| at least 4× (chord steps) and taken afresh at the current iterate otherwise
+//! reduces |r| at least 4× and, at that rate, at most two more chord steps would reach the
+//! tolerance (chord steps); it is taken afresh at the current iterate otherwise
 //! (docs/conventions.md §4: finite differences across a switching film are meaningless). The discrete
 //! JFO film of the second generation is continuous in ε (`crate::reynolds`, module docs), so
 //! Newton converges to the tolerance on every step of the validation and compressor cases;

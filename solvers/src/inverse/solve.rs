@@ -140,6 +140,26 @@ fn step_flows_from_volumes(
     }
 }
 
+/// More chord steps than this still to take (at the last step's rate) and the exact Jacobian is
+/// refreshed at the next iterate: a refresh — two linear solves on the step's multigrid
+/// hierarchy — costs about half a film step, and a fresh Newton step gains 100–4000× where a
+/// carried Jacobian gains 4–6× (docs/performance.md, "Sixth look"). Matters at tight force
+/// tolerances: the application's 1e-6 took 8–10 chord steps from a 0.1–1 residual.
+const CHORD_STEPS_WORTH_A_REFRESH: f64 = 2.0;
+
+/// Chord steps still to take after one that took the residual from `before` to `after`, were
+/// each to gain as much (linear convergence at the rate after / before), until `tolerance`.
+fn chord_steps_left(after: f64, before: f64, tolerance: f64) -> f64 {
+    if after <= tolerance {
+        return 0.0;
+    }
+    let rate = after / before;
+    if rate >= 1.0 {
+        return f64::INFINITY;
+    }
+    (after / tolerance).ln() / (1.0 / rate).ln()
+}
+
 fn norm(v: [f64; 2]) -> f64 {
     v[0].hypot(v[1])
 }
@@ -1301,13 +1321,13 @@ impl Stepper<'_> {
                     self.jac.valid = false;
                 }
                 None if fresh && loose => {
-                    // Give up on a tightly solved iterate (see above).
+                    // No descent from a relaxed iterate: its force is known only to the
+                    // relaxed accuracy, which near the tolerance may be all of its residual.
+                    // Solved tightly, it is accepted, or Newton goes on from it (and gives up
+                    // only on a tightly solved iterate, see above).
                     cur = problem.evaluate(film, cur.eps, &mut self.stats)?;
                     last_solved = cur.eps;
                     loose = false;
-                    if cur.res > params.tolerance {
-                        return self.give_up(&problem, cur, iterations, film);
-                    }
                 }
                 None if fresh => return self.give_up(&problem, cur, iterations, film),
                 None => self.jac.valid = false,
@@ -1380,7 +1400,9 @@ impl Stepper<'_> {
     /// Backtracking on |r| along `delta`, first shortened to close at most half of the gap to
     /// the wall; up to 8 halvings on a fresh Jacobian, none on a carried one (which is refreshed
     /// instead). On descent the Jacobian is updated: Broyden's update, or for the exact
-    /// Jacobian marked stale when the residual fell by less than 4× (chord steps otherwise).
+    /// Jacobian marked stale when the residual fell by less than 4× or more than
+    /// [`CHORD_STEPS_WORTH_A_REFRESH`] chord steps at this rate are still ahead (chord steps
+    /// otherwise).
     fn line_search<F: FilmModel + ?Sized>(
         &mut self,
         film: &mut F,
@@ -1408,7 +1430,13 @@ impl Stepper<'_> {
                         let y = [trial.r[0] - cur.r[0], trial.r[1] - cur.r[1]];
                         broyden(&mut self.jac.m, s, y);
                     }
-                    JacobianMethod::Exact if trial.res > 0.25 * cur.res => self.jac.valid = false,
+                    JacobianMethod::Exact
+                        if trial.res > 0.25 * cur.res
+                            || chord_steps_left(trial.res, cur.res, self.params.tolerance)
+                                > CHORD_STEPS_WORTH_A_REFRESH =>
+                    {
+                        self.jac.valid = false
+                    }
                     _ => {}
                 }
                 return Ok(Some(trial));
