@@ -1636,6 +1636,19 @@ mod tests {
     use crate::load::{ConstantLoad, FnLoad, OperatingHistory};
     use std::f64::consts::TAU;
 
+    /// Linear convergence at rate q from r reaches tol after log(r/tol)/log(1/q) more steps:
+    /// 1e-2 at rate 0.1 needs 4 more to 1e-6 (refresh), at rate 1e-3 four thirds (keep);
+    /// at or below the tolerance none; no descent, never.
+    #[test]
+    fn chord_steps_left_is_the_linear_convergence_count() {
+        assert!((chord_steps_left(1e-2, 1e-1, 1e-6) - 4.0).abs() < 1e-12);
+        assert!((chord_steps_left(1e-2, 10.0, 1e-6) - 4.0 / 3.0).abs() < 1e-12);
+        assert!(chord_steps_left(1e-2, 1e-1, 1e-6) > CHORD_STEPS_WORTH_A_REFRESH);
+        assert!(chord_steps_left(1e-2, 10.0, 1e-6) <= CHORD_STEPS_WORTH_A_REFRESH);
+        assert_eq!(chord_steps_left(1e-6, 1e-1, 1e-6), 0.0);
+        assert_eq!(chord_steps_left(1e-2, 1e-2, 1e-6), f64::INFINITY);
+    }
+
     /// What the toy films below return: the force, h_min = 1 − |ε| (clearance units), unit
     /// power loss.
     fn toy_response(film_force: [f64; 2], e: [f64; 2]) -> FilmResponse {

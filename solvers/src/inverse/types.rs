@@ -13,8 +13,9 @@ pub enum JacobianMethod {
     /// The film model's exact Jacobian from its converged linearization
     /// ([`super::FilmModel::force_jacobian`]), kept across iterates and steps while each
     /// Newton iterate along it reduces |r| at least 4× and, at that rate, at most two more
-    /// would reach the tolerance (chord steps), taken afresh at the current iterate otherwise and whenever a step along it finds no descent; forward
-    /// differences for a model that has none (counted in
+    /// would reach the tolerance (chord steps), taken afresh at the current iterate otherwise
+    /// and whenever a step along it finds no descent; forward differences for a model that has
+    /// none (counted in
     /// [`InverseInfo::jacobian_evaluations`] either way).
     #[default]
     Exact,
