@@ -569,7 +569,8 @@ fn boundary_volume_after(
 }
 
 pub(crate) struct Core {
-    grid: Grid,
+    /// The solver's grid, shared, not copied per solve.
+    grid: std::sync::Arc<Grid>,
     h: Vec<f64>,
     psi: Vec<f64>,
     g: Vec<f64>,
@@ -585,7 +586,7 @@ pub(crate) struct Core {
 #[derive(Debug, Clone)]
 pub struct ReynoldsSolver {
     params: ReynoldsParams,
-    grid: Grid,
+    grid: std::sync::Arc<Grid>,
     stencil: Stencil,
     ws: AdiWorkspace,
     /// μ per node: the constant viscosity, or the viscosity model at each node's temperature
@@ -755,7 +756,7 @@ impl ReynoldsSolver {
         if let Some(m) = &params.viscosity_model {
             m.validate()?;
         }
-        let grid = Grid::new(&params, 0.0)?;
+        let grid = std::sync::Arc::new(Grid::new(&params, 0.0)?);
         let n = grid.len();
         Ok(Self {
             viscosity_field: vec![params.viscosity; n],
@@ -1153,10 +1154,14 @@ impl ReynoldsSolver {
     /// coefficients and the time term (`discretization::residual_eccentricity_derivative`); the
     /// old level is fixed. Each right-hand side is
     /// solved by the film's own linear solver to 1e-5 of its largest entry (or `tolerance`, if
-    /// looser), started from the previous call's ∂ψ/∂ε (the fields move little from one call to
-    /// the next): Newton on ε needs the Jacobian to a few digits, not to round-off. Across a switch the discrete force
-    /// is continuous but only piecewise smooth: this is the derivative of the piece the answer
-    /// lies on — what finite differences across a switching film cannot give.
+    /// looser), started from zero: Newton on ε needs the Jacobian to a few digits, not to
+    /// round-off. (The previous call's ∂ψ/∂ε is no start: on the compressor-size cycle its
+    /// residual was 60 … 6e4 times the zero start's — the cavity moves between calls, and
+    /// an O(1) film-fraction sensitivity on a node now full weighs β-sized pressure fluxes —
+    /// and the solves took 5.4 Krylov iterations from it against 5.1 from zero.) Across a
+    /// switch the discrete force is continuous but only piecewise smooth: this is the
+    /// derivative of the piece the answer lies on — what finite differences across a switching
+    /// film cannot give.
     pub fn film_force_jacobian(&mut self) -> Result<[[f64; 2]; 2], ReynoldsError> {
         let responses = self.thickness_responses(&[
             ThicknessChange::Eccentricity(0),
@@ -1181,8 +1186,7 @@ impl ReynoldsSolver {
     /// [`Self::film_force_jacobian`] (which is this with δh = ∂h/∂ε_x, ∂h/∂ε_y), for any δh. A
     /// gap change δg ([`ThicknessChange::Gap`]) enters the film exactly as h does (h = c −
     /// e cos(θ − ψ) + g), so this is ∂p/∂g · δg of the deformable film. One linear solve per
-    /// change, to 1e-5 of its largest right-hand side (as the Jacobian's); the eccentricity
-    /// directions start from their previous answers, a gap direction from zero.
+    /// change, to 1e-5 of its largest right-hand side (as the Jacobian's), from zero.
     pub fn thickness_responses(
         &mut self,
         changes: &[ThicknessChange],
@@ -1307,8 +1311,7 @@ impl ReynoldsSolver {
     }
 
     /// Stage of [`Self::thickness_responses`]: solves A(g) δψ = −∂R/∂h · δh (assembled by
-    /// [`Self::assemble_response`]) to 1e-5 of its largest right-hand side, an eccentricity
-    /// direction from its previous answer (taken out of the sensitivities), a gap from zero.
+    /// [`Self::assemble_response`]) to 1e-5 of its largest right-hand side, from zero.
     fn solve_response(
         &mut self,
         change: &ThicknessChange,
@@ -1316,9 +1319,11 @@ impl ReynoldsSolver {
     ) -> Result<Vec<f64>, ReynoldsError> {
         let p = &self.params;
         let mut x = match change {
+            // The old sensitivity's memory, not its values (the doc of `film_force_jacobian`).
             ThicknessChange::Eccentricity(c) => std::mem::take(&mut self.sensitivity[*c]),
             ThicknessChange::Gap(_) => Vec::new(),
         };
+        x.clear();
         x.resize(self.grid.len(), 0.0);
         match p.linear_solver.preconditioner() {
             Some(pc) => {
@@ -1535,7 +1540,7 @@ impl ReynoldsSolver {
         if self.grid.theta0 != theta0
             || self.grid.len() != self.params.grid.n_theta * self.params.grid.n_z
         {
-            self.grid = Grid::new(&self.params, theta0)?;
+            self.grid = std::sync::Arc::new(Grid::new(&self.params, theta0)?);
         }
         Ok(())
     }
@@ -1760,7 +1765,7 @@ impl ReynoldsSolver {
             },
         });
         Ok(Core {
-            grid: grid.clone(),
+            grid: std::sync::Arc::clone(&self.grid),
             h: h.node,
             psi,
             g,
