@@ -99,6 +99,8 @@ pub(crate) struct KrylovInfo {
     pub iterations: usize,
     /// max_k |r_k| of the returned x (what the stopping test saw).
     pub residual: f64,
+    /// The flux scale of that test (`flux_scale`, or the stencil's own).
+    pub scale: f64,
 }
 
 impl AdiWorkspace {
@@ -379,6 +381,7 @@ pub(crate) fn solve_krylov(
             return Ok(KrylovInfo {
                 iterations,
                 residual: rmax,
+                scale,
             });
         }
         if iterations >= max_iterations {

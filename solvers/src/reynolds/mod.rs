@@ -1926,11 +1926,20 @@ impl FrozenSwitch<'_> {
         let (grid, speed) = (self.level.grid, self.level.speed);
         let (n, nz) = (grid.len(), grid.n_z);
         self.assemble(g);
-        let (rmax_now, scale) = self.stencil.residual(grid, psi, &mut self.r);
-        if !self.first_residual.is_finite() {
-            self.first_residual = rmax_now.max(f64::MIN_POSITIVE);
+        let p = self.params;
+        let steady = matches!(self.time, TimeTerm::Steady);
+        // The residual scale at ψ: a time step's Krylov solve measures it itself, at its start
+        // (the unshifted matrix, from ψ: the same number; its residual there is the first
+        // thing it computes, which this would compute twice); a steady solve's shift needs the
+        // residual first, and the sparse-LU oracle measures none.
+        let (mut rmax_now, mut scale) = (f64::NAN, f64::NAN);
+        if steady || p.linear_solver.preconditioner().is_none() {
+            (rmax_now, scale) = self.stencil.residual(grid, psi, &mut self.r);
+            if !self.first_residual.is_finite() {
+                self.first_residual = rmax_now.max(f64::MIN_POSITIVE);
+            }
         }
-        if matches!(self.time, TimeTerm::Steady) {
+        if steady {
             self.assembled_for.clear();
             let sigma = STEADY_SHIFT * (rmax_now / self.first_residual).min(1.0);
             for k in 0..n {
@@ -1941,7 +1950,6 @@ impl FrozenSwitch<'_> {
                 }
             }
         }
-        let p = self.params;
         let mut y = psi.to_vec();
         match p.linear_solver.preconditioner() {
             Some(pc) => {
@@ -1950,12 +1958,13 @@ impl FrozenSwitch<'_> {
                     self.stencil,
                     &mut y,
                     linear_tolerance,
-                    Some(scale),
+                    steady.then_some(scale),
                     p.max_linear_iterations,
                     pc,
                     Some(g),
                     self.ws,
                 )?;
+                scale = info.scale;
                 newton.linear_iterations += info.iterations;
                 self.solved_residual = (!self.assembled_for.is_empty()).then_some(info.residual);
             }
