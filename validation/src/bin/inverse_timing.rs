@@ -336,7 +336,7 @@ fn report_row(r: &Row) {
     let per_cycle = r.total * info.steps_per_cycle as f64 / steps as f64;
     let evals = info.film_evaluations as f64;
     report!(
-        "| {} × {} | {}° | {:.1} | {:.1} | {:.1} % / {:.1} % | {:.2} | {:.2} | {:.1} | {} / {} | {:.3} | {:.2} |",
+        "| {} × {} | {}° | {:.2} | {:.2} | {:.1} % / {:.1} % | {:.2} | {:.2} | {:.1} | {} / {} | {:.3} | {:.2} |",
         r.grid.0,
         r.grid.1,
         r.step_deg,
