@@ -177,7 +177,8 @@ fn mean_supply_equals_mean_side_leakage_on_the_default_grid() {
 /// No saw-tooth (`jbearing_validation::smoothness`, whose unit tests show it measuring one;
 /// issue 11 item 8): the zigzag amplitude of the side leakage and of the supply flow of the
 /// BDF2 cycle is ≤ 5 % of their range (the issue's bound). (Measured 2026-11-27: backward
-/// Euler 13 steps refined, 9.3e-12 relative, zigzag 0.23 %; BDF2 8 refined, 5.1e-10, 0.14 %.)
+/// Euler 13 steps refined, 9.3e-12 relative (7.4e-12 after a277352), zigzag 0.23 %; BDF2 8
+/// refined, 5.1e-10, 0.14 %.)
 #[test]
 fn mass_and_smoothness_of_a_cycle_with_refined_steps() {
     let load = history(FnLoad {
