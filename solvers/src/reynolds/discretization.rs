@@ -273,11 +273,11 @@ pub(crate) enum TimeTerm<'a> {
     },
 }
 
-/// Coefficients (a_L, a_R, f_0) of the θ-face east of node k (L = k, R = ke):
+/// Coefficients (a_L, a_R, f_0) of the θ-face east of node k in row j (L = k, R = ke):
 /// F = a_L ψ_L + a_R ψ_R + f_0 with the Couette part (U/2) h_f (1 + ψ_up) upwind in the
 /// direction of U on every face (module docs).
 #[inline(always)]
-fn theta_face(lv: &Level, g: &[f64], k: usize, ke: usize) -> (f64, f64, f64) {
+fn theta_face(lv: &Level, g: &[f64], k: usize, ke: usize, j: usize) -> (f64, f64, f64) {
     let grid = lv.grid;
     let dx = grid.radius * grid.d_theta;
     let (gl, gr) = (g[k], g[ke]);
@@ -288,7 +288,8 @@ fn theta_face(lv: &Level, g: &[f64], k: usize, ke: usize) -> (f64, f64, f64) {
         (0.0, couette)
     };
     let kd = lv.k_theta[k] / dx;
-    let width = grid.row_width(k % grid.n_z);
+    debug_assert_eq!(j, k % grid.n_z);
+    let width = grid.row_width(j);
     (
         width * (cl + kd * gl),
         width * (cr - kd * gr),
@@ -296,11 +297,12 @@ fn theta_face(lv: &Level, g: &[f64], k: usize, ke: usize) -> (f64, f64, f64) {
     )
 }
 
-/// Coefficients (a_L, a_R) of the z-face north of node k.
+/// Coefficients (a_L, a_R) of the z-face north of node k (row j).
 #[inline(always)]
-fn z_face(lv: &Level, g: &[f64], k: usize) -> (f64, f64) {
+fn z_face(lv: &Level, g: &[f64], k: usize, j: usize) -> (f64, f64) {
     let grid = lv.grid;
-    let c = grid.radius * grid.d_theta * lv.k_z[k] / grid.z_gap(k % grid.n_z);
+    debug_assert_eq!(j, k % grid.n_z);
+    let c = grid.radius * grid.d_theta * lv.k_z[k] / grid.z_gap(j);
     (c * g[k], -c * g[k + 1])
 }
 
@@ -321,7 +323,7 @@ pub(crate) fn assemble(lv: &Level, g: &[f64], dirichlet: &[f64], time: TimeTerm,
         for j in 0..nz {
             let k = i * nz + j;
             let ke = ie * nz + j;
-            let (al, ar, f0) = theta_face(lv, g, k, ke);
+            let (al, ar, f0) = theta_face(lv, g, k, ke, j);
             st.p[k] += weight * al;
             st.e[k] += weight * ar;
             st.rhs[k] -= weight * f0;
@@ -329,7 +331,7 @@ pub(crate) fn assemble(lv: &Level, g: &[f64], dirichlet: &[f64], time: TimeTerm,
             st.w[ke] -= weight * al;
             st.rhs[ke] += weight * f0;
             if j + 1 < nz {
-                let (al, ar) = z_face(lv, g, k);
+                let (al, ar) = z_face(lv, g, k, j);
                 st.p[k] += weight * al;
                 st.n[k] += weight * ar;
                 st.p[k + 1] -= weight * ar;
@@ -375,10 +377,10 @@ pub(crate) fn face_fluxes(lv: &Level, g: &[f64], psi: &[f64], theta: &mut [f64],
         for j in 0..nz {
             let k = i * nz + j;
             let ke = ie * nz + j;
-            let (al, ar, f0) = theta_face(lv, g, k, ke);
+            let (al, ar, f0) = theta_face(lv, g, k, ke, j);
             theta[k] = al * psi[k] + ar * psi[ke] + f0;
             z[k] = if j + 1 < nz {
-                let (al, ar) = z_face(lv, g, k);
+                let (al, ar) = z_face(lv, g, k, j);
                 al * psi[k] + ar * psi[k + 1]
             } else {
                 0.0
