@@ -1660,16 +1660,20 @@ impl ReynoldsSolver {
         let grid = &self.grid;
         let (beta, nz) = (self.params.bulk_modulus, grid.n_z);
         let mu = &self.viscosity_field;
-        for k in 0..grid.len() {
-            let ie = (k / nz + 1) % grid.n_theta;
-            let mu_e = 0.5 * (mu[k] + mu[ie * nz + k % nz]);
-            self.k_theta[k] = beta * h.face_theta[k].powi(3) / (12.0 * mu_e);
-            if k % nz + 1 < nz {
-                let hf = 0.5 * (h.node[k] + h.node[k + 1]);
-                let mu_n = 0.5 * (mu[k] + mu[k + 1]);
-                self.k_z[k] = beta * hf.powi(3) / (12.0 * mu_n);
-            } else {
-                self.k_z[k] = 0.0;
+        let nt = grid.n_theta;
+        for i in 0..nt {
+            let ie = if i + 1 == nt { 0 } else { i + 1 };
+            for j in 0..nz {
+                let k = i * nz + j;
+                let mu_e = 0.5 * (mu[k] + mu[ie * nz + j]);
+                self.k_theta[k] = beta * h.face_theta[k].powi(3) / (12.0 * mu_e);
+                if j + 1 < nz {
+                    let hf = 0.5 * (h.node[k] + h.node[k + 1]);
+                    let mu_n = 0.5 * (mu[k] + mu[k + 1]);
+                    self.k_z[k] = beta * hf.powi(3) / (12.0 * mu_n);
+                } else {
+                    self.k_z[k] = 0.0;
+                }
             }
         }
     }
