@@ -69,12 +69,14 @@ pub struct ReynoldsFilm {
     history: StepHistory,
 }
 
-/// A time level the film has been stepped from: ε, φ, and the Δt of the last step taken from
-/// it (the step that led to the next level, when that step was accepted).
+/// A time level the film has been stepped from: ε, φ, its boundary volumes (which a state
+/// stepped from it records as its `previous_boundary_volume`: the link that says it is this
+/// level's successor), and the Δt of the last step taken from it.
 #[derive(Debug, Clone)]
 struct SteppedFrom {
     eccentricity_ratio: [f64; 2],
     density_ratio: ndarray::Array2<f64>,
+    boundary_volume: Vec<f64>,
     dt: f64,
 }
 
@@ -96,6 +98,7 @@ impl StepHistory {
                 self.now = Some(SteppedFrom {
                     eccentricity_ratio: state.eccentricity_ratio,
                     density_ratio: state.density_ratio.clone(),
+                    boundary_volume: state.boundary_volume.clone(),
                     dt,
                 });
             }
@@ -105,9 +108,11 @@ impl StepHistory {
     /// The start of a step of length `dt` to `eccentricity_ratio` from `state` (the current
     /// level): φ extrapolated linearly in time from the level before through `state`, the
     /// switch full where φ ≥ 1 (module docs). None when there is no level before of this grid,
-    /// when `state` is deformed (its gap is not part of φ), when the step that left the level
-    /// before is not the one BDF2 says led to `state`, or when Δt / Δt_prev is outside
-    /// (0, 2] (a restart after a step-length cut or a cycle extrapolation: φⁿ itself).
+    /// when `state` was not stepped from it (its `previous_boundary_volume` is not that
+    /// level's boundary volume: a new run's start, a state from elsewhere), when `state` is
+    /// deformed (its gap is not part of φ), when the step that left the level before is not
+    /// the one BDF2 says led to `state`, or when Δt / Δt_prev is outside (0, 2] (a restart
+    /// after a step-length cut: φⁿ itself).
     fn extrapolated_start(
         &self,
         state: &FilmState,
@@ -115,7 +120,10 @@ impl StepHistory {
         dt: f64,
     ) -> Option<FilmState> {
         let before = self.before.as_ref()?;
-        if state.deformation.is_some() || before.density_ratio.dim() != state.density_ratio.dim() {
+        if state.deformation.is_some()
+            || before.density_ratio.dim() != state.density_ratio.dim()
+            || state.previous_boundary_volume.as_ref() != Some(&before.boundary_volume)
+        {
             return None;
         }
         if let Some((_, dt_led)) = &state.previous_level
@@ -412,17 +420,20 @@ mod tests {
     }
 
     /// The extrapolated start: φⁿ + (Δt/Δt_prev)(φⁿ − φⁿ⁻¹) clipped at 0, full where ≥ 1, at
-    /// the step's ε; none without a level before, for a deformed state, a step-length ratio
-    /// outside (0, 2], or a BDF2 state not led to by the recorded step.
+    /// the step's ε; none without a level before, for a state not stepped from it, a deformed
+    /// state, a step-length ratio outside (0, 2], or a BDF2 state not led to by the recorded
+    /// step.
     #[test]
     fn the_start_is_the_film_extrapolated_in_time() {
         let m = film();
         let mut before = m.initial_state([0.1, 0.0]);
         before.density_ratio.fill(0.9);
         before.density_ratio[[3, 4]] = 1.2;
+        before.boundary_volume = vec![1e-9, 2e-9, -3e-9];
         let mut now = m.initial_state([0.2, 0.0]);
         now.density_ratio.fill(1.0);
         now.density_ratio[[3, 4]] = 0.1;
+        now.previous_boundary_volume = Some(before.boundary_volume.clone());
         let mut history = StepHistory::default();
         history.record(&before, 2e-4);
         history.record(&before, 1e-4); // a second iterate from the same level: Δt updated
@@ -452,6 +463,20 @@ mod tests {
         assert!(history.extrapolated_start(&led, [0.3, 0.0], 5e-5).is_none());
         led.previous_level = Some((now.density_ratio.clone(), 1e-4));
         assert!(history.extrapolated_start(&led, [0.3, 0.0], 5e-5).is_some());
+        // A state not stepped from the level before (a new run's start, say): none.
+        let mut elsewhere = now.clone();
+        elsewhere.previous_boundary_volume = Some(vec![0.0; 3]);
+        assert!(
+            history
+                .extrapolated_start(&elsewhere, [0.3, 0.0], 5e-5)
+                .is_none()
+        );
+        elsewhere.previous_boundary_volume = None;
+        assert!(
+            history
+                .extrapolated_start(&elsewhere, [0.3, 0.0], 5e-5)
+                .is_none()
+        );
         // A deformed state's gap is not part of φ.
         let mut deformed = now.clone();
         deformed.deformation = Some(crate::reynolds::FilmDeformation::new(vec![0.0; 8]).unwrap());
@@ -479,11 +504,10 @@ mod tests {
         for eps in &path[1..3] {
             state = with_history.step(&state, *eps, dt, &cond).unwrap().1;
         }
-        assert!(with_history.history.before.is_some());
-        let start = with_history
-            .history
-            .extrapolated_start(&state, path[3], dt)
-            .unwrap();
+        // What `step` does first: the state stepped from becomes the current level.
+        let mut history = with_history.history.clone();
+        history.record(&state, dt);
+        let start = history.extrapolated_start(&state, path[3], dt).unwrap();
         let moved = start
             .density_ratio
             .iter()
