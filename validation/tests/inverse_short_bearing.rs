@@ -71,6 +71,7 @@ fn constant_load_reproduces_steady_ocvirk_solution() {
         ([0.0, -3000.0], TimeScheme::default()),
         ([1200.0, 500.0], TimeScheme::default()),
         ([0.0, -3000.0], TimeScheme::BackwardEuler),
+        ([0.0, -3000.0], TimeScheme::CrankNicolson),
     ] {
         let mut f = film(scheme);
         let load = history(ConstantLoad {
@@ -117,7 +118,7 @@ fn constant_load_reproduces_steady_ocvirk_solution() {
     write_row(
         "constant_load_reproduces_steady_ocvirk_solution",
         &format!(
-            "constant load {} kN (and {} kN oblique), BDF2 and BE",
+            "constant load {} kN (and {} kN oblique), BDF2, BE and CN",
             fixed(a.0 / 1e3, 1),
             fixed(b.0 / 1e3, 1)
         ),
@@ -141,56 +142,63 @@ fn constant_load_reproduces_steady_ocvirk_solution() {
 /// end in a reported collapse with finite numbers.
 #[test]
 fn half_speed_whirl_load_collapses() {
-    let mut f = film(TimeScheme::default());
-    let load = history(RotatingLoad {
-        magnitude: 3000.0,
-        angular_speed: 0.5 * OMEGA,
-        phase: -0.5 * PI,
-    });
-    // h_min floor 1 µm: the film is gone at the surface-roughness scale (ε = 0.98 here).
-    let params = InverseParams {
-        min_film_floor: 1e-6,
-        ..Default::default()
-    };
-    match solve_inverse(&params, &load, &mut f, &mut NoObserver) {
-        Err(InverseError::Collapse {
-            time,
-            crank_angle_deg,
-            eccentricity,
-            min_film_thickness,
-            residual,
-            eccentricity_ratio,
-            ..
-        }) => {
-            for v in [
+    let mut rows = Vec::new();
+    for (scheme, name) in [
+        (TimeScheme::default(), "BDF2"),
+        (TimeScheme::CrankNicolson, "CN"),
+    ] {
+        let mut f = film(scheme);
+        let load = history(RotatingLoad {
+            magnitude: 3000.0,
+            angular_speed: 0.5 * OMEGA,
+            phase: -0.5 * PI,
+        });
+        // h_min floor 1 µm: the film is gone at the surface-roughness scale (ε = 0.98 here).
+        let params = InverseParams {
+            min_film_floor: 1e-6,
+            ..Default::default()
+        };
+        match solve_inverse(&params, &load, &mut f, &mut NoObserver) {
+            Err(InverseError::Collapse {
                 time,
                 crank_angle_deg,
                 eccentricity,
                 min_film_thickness,
                 residual,
-            ] {
-                assert!(v.is_finite());
-            }
-            assert!(eccentricity_ratio.iter().all(|v| v.is_finite()));
-            eprintln!(
-                "whirl: collapse at t = {time:.4} s, crank {crank_angle_deg:.0}°, |ε| {eccentricity:.4}"
-            );
-            assert!(eccentricity > 0.97 && eccentricity < 1.0, "{eccentricity}");
-            assert!(min_film_thickness < 1e-6);
-            write_row(
-                "half_speed_whirl_load_collapses",
-                "half-speed whirl load 3 kN (ω_W = ω_j/2, ω̄ − ω_W = 0), BDF2",
-                "must not be carried",
-                &format!(
-                    "`Collapse` at h_min < 1 µm floor: t = {} s, {}°, ε = {}",
+                eccentricity_ratio,
+                ..
+            }) => {
+                for v in [
+                    time,
+                    crank_angle_deg,
+                    eccentricity,
+                    min_film_thickness,
+                    residual,
+                ] {
+                    assert!(v.is_finite());
+                }
+                assert!(eccentricity_ratio.iter().all(|v| v.is_finite()));
+                eprintln!(
+                    "whirl ({name}): collapse at t = {time:.4} s, crank {crank_angle_deg:.0}°, |ε| {eccentricity:.4}"
+                );
+                assert!(eccentricity > 0.97 && eccentricity < 1.0, "{eccentricity}");
+                assert!(min_film_thickness < 1e-6);
+                rows.push(format!(
+                    "{name}: t = {} s, {}°, ε = {}",
                     fixed(time, 4),
                     fixed(crank_angle_deg, 0),
                     fixed(eccentricity, 4)
-                ),
-            );
+                ));
+            }
+            other => panic!("{name}: expected collapse, got {other:?}"),
         }
-        other => panic!("expected collapse, got {other:?}"),
     }
+    write_row(
+        "half_speed_whirl_load_collapses",
+        "half-speed whirl load 3 kN (ω_W = ω_j/2, ω̄ − ω_W = 0), BDF2 and CN",
+        "must not be carried",
+        &format!("`Collapse` at h_min < 1 µm floor: {}", rows.join("; ")),
+    );
 }
 
 /// The trap BDF2 (the default) and Crank–Nicolson avoid: backward Euler's chord of the whirl
@@ -320,7 +328,7 @@ fn mirrored_load_and_rotation_give_mirrored_orbit() {
 }
 
 /// Halving the 1° default step changes the cycle-minimum h_min and the mean power loss by less
-/// than 1 % (BDF2, the default: second order).
+/// than 1 % with each second-order scheme (BDF2, the default, and Crank–Nicolson).
 #[test]
 fn halving_the_time_step_changes_h_min_and_power_loss_below_one_percent() {
     let tau = TAU / OMEGA;
@@ -333,8 +341,8 @@ fn halving_the_time_step_changes_h_min_and_power_loss_below_one_percent() {
             [600.0 * (2.0 * a).sin(), -800.0 - pulse]
         },
     });
-    let run = |step_deg: f64| {
-        let mut f = film(TimeScheme::default());
+    let run = |step_deg: f64, scheme: TimeScheme| {
+        let mut f = film(scheme);
         let params = InverseParams {
             step_deg,
             tolerance: 1e-6,
@@ -343,32 +351,39 @@ fn halving_the_time_step_changes_h_min_and_power_loss_below_one_percent() {
         };
         solve_inverse(&params, &load, &mut f, &mut NoObserver).unwrap()
     };
-    let a = run(1.0);
-    let b = run(0.5);
-    assert!(a.info.periodic && b.info.periodic);
-    let dh = (a.summary.min_film_thickness / b.summary.min_film_thickness - 1.0).abs();
-    let dp = (a.summary.mean_power_loss / b.summary.mean_power_loss - 1.0).abs();
-    eprintln!(
-        "1° / 0.5°: h_min {:.5} / {:.5} µm, mean power {:.4} / {:.4} W; changes {dh:.1e} / {dp:.1e}",
-        1e6 * a.summary.min_film_thickness,
-        1e6 * b.summary.min_film_thickness,
-        a.summary.mean_power_loss,
-        b.summary.mean_power_loss
-    );
-    assert!(dh < 0.01, "h_min change {dh}");
-    assert!(dp < 0.01, "power loss change {dp}");
-    write_row(
-        "halving_the_time_step_changes_h_min_and_power_loss_below_one_percent",
-        "time step 1° / 0.5°, synthetic pulse load (peak 4.8 kN), BDF2",
-        "halving changes < 1 %",
-        &format!(
-            "h_min {} / {} µm; mean power {} / {} W (changes {}, {})",
+    let mut rows = Vec::new();
+    for (scheme, name) in [
+        (TimeScheme::default(), "BDF2"),
+        (TimeScheme::CrankNicolson, "CN"),
+    ] {
+        let a = run(1.0, scheme);
+        let b = run(0.5, scheme);
+        assert!(a.info.periodic && b.info.periodic);
+        let dh = (a.summary.min_film_thickness / b.summary.min_film_thickness - 1.0).abs();
+        let dp = (a.summary.mean_power_loss / b.summary.mean_power_loss - 1.0).abs();
+        eprintln!(
+            "{name} 1° / 0.5°: h_min {:.5} / {:.5} µm, mean power {:.4} / {:.4} W; changes {dh:.1e} / {dp:.1e}",
+            1e6 * a.summary.min_film_thickness,
+            1e6 * b.summary.min_film_thickness,
+            a.summary.mean_power_loss,
+            b.summary.mean_power_loss
+        );
+        assert!(dh < 0.01, "{name}: h_min change {dh}");
+        assert!(dp < 0.01, "{name}: power loss change {dp}");
+        rows.push(format!(
+            "{name}: h_min {} / {} µm; mean power {} / {} W (changes {}, {})",
             fixed(1e6 * a.summary.min_film_thickness, 5),
             fixed(1e6 * b.summary.min_film_thickness, 5),
             fixed(a.summary.mean_power_loss, 4),
             fixed(b.summary.mean_power_loss, 4),
             sci(dh, 1),
             sci(dp, 1)
-        ),
+        ));
+    }
+    write_row(
+        "halving_the_time_step_changes_h_min_and_power_loss_below_one_percent",
+        "time step 1° / 0.5°, synthetic pulse load (peak 4.8 kN), BDF2 and CN",
+        "halving changes < 1 %",
+        &rows.join("; "),
     );
 }
