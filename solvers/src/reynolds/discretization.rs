@@ -308,9 +308,63 @@ fn z_face(lv: &Level, g: &[f64], k: usize, j: usize) -> (f64, f64) {
 
 /// Assembles the frozen-switch system. `dirichlet[k]` is ψ_D at Dirichlet nodes.
 pub(crate) fn assemble(lv: &Level, g: &[f64], dirichlet: &[f64], time: TimeTerm, st: &mut Stencil) {
+    st.resize(lv.grid.len());
+    assemble_columns(lv, g, dirichlet, time, st, None);
+}
+
+/// Re-assembles the rows of the θ-columns marked in `columns` (`columns[i]`: column i) of a
+/// stencil that holds this level's system for another switch, leaving the other rows as they
+/// are. A switch change at node k alters only the coefficients on ψ_k, i.e. the rows of k and
+/// of its four neighbours, so after a change at the nodes K the columns of K and their two
+/// θ-neighbours are the ones to mark; the result is then the full [`assemble`] for the new
+/// switch, bit for bit: each marked row is zeroed and receives the same face contributions in
+/// the same order (faces in the same (i, j) loop order, the time term, the Dirichlet rows).
+///
+/// ```text
+///   column:   i−1        i         i+1
+///   rows of i get the east faces of i−1 (W), their own east faces (E) and z-faces (S, N):
+///              ●──W──▶   ●──E──▶   ●
+///                        │N
+///                        ●
+/// ```
+pub(crate) fn assemble_changed_columns(
+    lv: &Level,
+    g: &[f64],
+    dirichlet: &[f64],
+    time: TimeTerm,
+    st: &mut Stencil,
+    columns: &[bool],
+) {
+    let nz = lv.grid.n_z;
+    for (i, _) in columns.iter().enumerate().filter(|(_, c)| **c) {
+        for v in [
+            &mut st.p,
+            &mut st.w,
+            &mut st.e,
+            &mut st.s,
+            &mut st.n,
+            &mut st.rhs,
+        ] {
+            v[i * nz..(i + 1) * nz].fill(0.0);
+        }
+    }
+    assemble_columns(lv, g, dirichlet, time, st, Some(columns));
+}
+
+/// The accumulation of [`assemble`] into a zeroed stencil, restricted to the rows of the
+/// marked columns (all with `None`).
+#[inline(always)]
+fn assemble_columns(
+    lv: &Level,
+    g: &[f64],
+    dirichlet: &[f64],
+    time: TimeTerm,
+    st: &mut Stencil,
+    columns: Option<&[bool]>,
+) {
     let grid = lv.grid;
     let (nt, nz) = (grid.n_theta, grid.n_z);
-    st.resize(grid.len());
+    let marked = |i: usize| columns.is_none_or(|c| c[i]);
     let weight = match time {
         TimeTerm::Step {
             old_outflow: Some(_),
@@ -320,17 +374,25 @@ pub(crate) fn assemble(lv: &Level, g: &[f64], dirichlet: &[f64], time: TimeTerm,
     };
     for i in 0..nt {
         let ie = if i + 1 == nt { 0 } else { i + 1 };
+        let (own, east) = (marked(i), marked(ie));
+        if !(own || east) {
+            continue;
+        }
         for j in 0..nz {
             let k = i * nz + j;
             let ke = ie * nz + j;
             let (al, ar, f0) = theta_face(lv, g, k, ke, j);
-            st.p[k] += weight * al;
-            st.e[k] += weight * ar;
-            st.rhs[k] -= weight * f0;
-            st.p[ke] -= weight * ar;
-            st.w[ke] -= weight * al;
-            st.rhs[ke] += weight * f0;
-            if j + 1 < nz {
+            if own {
+                st.p[k] += weight * al;
+                st.e[k] += weight * ar;
+                st.rhs[k] -= weight * f0;
+            }
+            if east {
+                st.p[ke] -= weight * ar;
+                st.w[ke] -= weight * al;
+                st.rhs[ke] += weight * f0;
+            }
+            if own && j + 1 < nz {
                 let (al, ar) = z_face(lv, g, k, j);
                 st.p[k] += weight * al;
                 st.n[k] += weight * ar;
@@ -339,30 +401,33 @@ pub(crate) fn assemble(lv: &Level, g: &[f64], dirichlet: &[f64], time: TimeTerm,
             }
         }
     }
-    if let TimeTerm::Step {
-        dt,
-        old_content,
-        old_outflow,
-    } = time
-    {
-        let v = grid.radius * grid.d_theta * grid.dz;
-        for k in 0..grid.len() {
-            let c = v / dt;
-            st.p[k] += c * lv.h[k];
-            st.rhs[k] += c * (old_content[k] - lv.h[k]);
-            if let Some(d) = old_outflow {
-                st.rhs[k] -= 0.5 * d[k];
+    for i in (0..nt).filter(|&i| marked(i)) {
+        let rows = i * nz..(i + 1) * nz;
+        if let TimeTerm::Step {
+            dt,
+            old_content,
+            old_outflow,
+        } = time
+        {
+            let v = grid.radius * grid.d_theta * grid.dz;
+            for k in rows.clone() {
+                let c = v / dt;
+                st.p[k] += c * lv.h[k];
+                st.rhs[k] += c * (old_content[k] - lv.h[k]);
+                if let Some(d) = old_outflow {
+                    st.rhs[k] -= 0.5 * d[k];
+                }
             }
         }
-    }
-    for k in 0..grid.len() {
-        if grid.kind[k] != NodeKind::Unknown {
-            st.p[k] = 1.0;
-            st.w[k] = 0.0;
-            st.e[k] = 0.0;
-            st.s[k] = 0.0;
-            st.n[k] = 0.0;
-            st.rhs[k] = dirichlet[k];
+        for k in rows {
+            if grid.kind[k] != NodeKind::Unknown {
+                st.p[k] = 1.0;
+                st.w[k] = 0.0;
+                st.e[k] = 0.0;
+                st.s[k] = 0.0;
+                st.n[k] = 0.0;
+                st.rhs[k] = dirichlet[k];
+            }
         }
     }
 }

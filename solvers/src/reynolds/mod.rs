@@ -1888,6 +1888,7 @@ impl ReynoldsSolver {
             first_residual: f64::NAN,
             assembled_for: Vec::new(),
             solved_residual: None,
+            changed_columns: Vec::new(),
         }
     }
 }
@@ -1913,6 +1914,8 @@ struct FrozenSwitch<'a> {
     /// `assembled_for`, which [`FrozenSwitch::residual`] at that answer and switch would
     /// recompute.
     solved_residual: Option<f64>,
+    /// Scratch of [`FrozenSwitch::assemble`]: the θ-columns to re-assemble.
+    changed_columns: Vec<bool>,
 }
 
 impl FrozenSwitch<'_> {
@@ -2000,14 +2003,51 @@ impl FrozenSwitch<'_> {
         self.stencil.residual(self.level.grid, y, &mut self.r).0
     }
 
-    /// The stencil ← A(g) (unshifted), unless it holds that already.
+    /// The stencil ← A(g) (unshifted), unless it holds that already. When it holds A(g') of
+    /// another switch, only the θ-columns around the nodes where g and g' differ are
+    /// re-assembled ([`discretization::assemble_changed_columns`]: the same matrix bit for bit;
+    /// a Newton step switches a few nodes at the cavity edges, so this is a fraction of a full
+    /// assembly), unless they are more than half of the columns.
     fn assemble(&mut self, g: &[f64]) {
-        if self.assembled_for != g {
-            self.solved_residual = None;
-            discretization::assemble(&self.level, g, self.dirichlet, self.time, self.stencil);
-            self.assembled_for.clear();
-            self.assembled_for.extend_from_slice(g);
+        if self.assembled_for == g {
+            return;
         }
+        self.solved_residual = None;
+        let grid = self.level.grid;
+        let (nt, nz) = (grid.n_theta, grid.n_z);
+        let mut columns = std::mem::take(&mut self.changed_columns);
+        columns.clear();
+        columns.resize(nt, false);
+        let mut marked = 0;
+        if self.assembled_for.len() == g.len() {
+            for (k, _) in g
+                .iter()
+                .zip(&self.assembled_for)
+                .enumerate()
+                .filter(|(_, (a, b))| a != b)
+            {
+                let i = k / nz;
+                for c in [if i == 0 { nt - 1 } else { i - 1 }, i, (i + 1) % nt] {
+                    marked += usize::from(!columns[c]);
+                    columns[c] = true;
+                }
+            }
+        }
+        if marked > 0 && 2 * marked <= nt {
+            discretization::assemble_changed_columns(
+                &self.level,
+                g,
+                self.dirichlet,
+                self.time,
+                self.stencil,
+                &columns,
+            );
+        } else {
+            discretization::assemble(&self.level, g, self.dirichlet, self.time, self.stencil);
+        }
+        self.changed_columns = columns;
+        self.assembled_for.clear();
+        self.assembled_for.extend_from_slice(g);
     }
 }
 
