@@ -416,66 +416,81 @@ fn coarse_mask(nt: usize, nz: usize, fmask: &[f64], cmask: &mut Vec<f64>) {
 /// Galerkin coarse operator A_c = R A P of the module docs (`fmask`, `cmask`: activity of the
 /// fine and coarse nodes). Needs n_c = ⌈n_θ/2⌉ ≥ 3.
 pub(crate) fn galerkin(fine: &Stencil9, fmask: &[f64], cmask: &[f64], coarse: &mut Stencil9) {
+    let nc = coarse_len(fine.nt);
+    debug_assert!(nc >= 3);
+    coarse.reset(nc, fine.nz);
+    for ic in 0..nc {
+        galerkin_column(fine, fmask, cmask, coarse, ic);
+    }
+}
+
+/// Column `ic` of the Galerkin operator into a coarse stencil whose column `ic` is zero: every
+/// entry of coarse column ic is written here and nowhere else, so recomputing one column (after
+/// zeroing it) gives the bits of the whole product.
+#[inline(always)]
+fn galerkin_column(
+    fine: &Stencil9,
+    fmask: &[f64],
+    cmask: &[f64],
+    coarse: &mut Stencil9,
+    ic: usize,
+) {
     let (nt, nz) = (fine.nt, fine.nz);
     let nc = coarse_len(nt);
-    debug_assert!(nc >= 3);
-    coarse.reset(nc, nz);
-    for ic in 0..nc {
-        let (kids, nk) = children(ic, nt);
-        // Coarse offset of parent ig from ic: 0, +1 or −1 (mod n_c).
-        let offset = |ig: usize| -> isize {
-            let off = (ig + nc - ic) % nc;
-            debug_assert!(off == 0 || off == 1 || off == nc - 1);
-            match off {
-                0 => 0,
-                1 => 1,
-                _ => -1,
-            }
-        };
-        // The θ-structure (children, neighbours, parents, coarse offsets) is the same on every
-        // row j: work it out once per coarse column, then run down the column.
-        for &(f, wr) in &kids[..nk] {
-            for di in -1isize..=1 {
-                let g = wrap(f, di, nt);
-                let (par, np) = parents(g, nt);
-                for &(ig, w) in &par[..np] {
-                    let dc = offset(ig);
-                    let weight = wr * w;
-                    for dj in -1isize..=1 {
-                        if fine.five && di != 0 && dj != 0 {
-                            // The five-point fine level's corners are zero: nothing to add.
-                            continue;
-                        }
-                        let src = &fine.c[at(di, dj)];
-                        let dst = &mut coarse.c[at(dc, dj)];
-                        // Rows j0..j1 of the column; their neighbours jj = j + dj.
-                        let (j0, j1) = (usize::from(dj < 0), nz - usize::from(dj > 0));
-                        let len = j1 - j0;
-                        let jn = (j0 as isize + dj) as usize;
-                        let row = f * nz + j0..f * nz + j0 + len;
-                        let d = &mut dst[ic * nz + j0..ic * nz + j0 + len];
-                        let cr = &cmask[ic * nz + j0..ic * nz + j0 + len];
-                        let fg = &fmask[g * nz + jn..g * nz + jn + len];
-                        let cc = &cmask[ig * nz + jn..ig * nz + jn + len];
-                        // Row active (R) × column active (P) × coarse column active.
-                        for ((((d, a), fr), (fg, cc)), cr) in d
-                            .iter_mut()
-                            .zip(&src[row.clone()])
-                            .zip(&fmask[row])
-                            .zip(fg.iter().zip(cc))
-                            .zip(cr)
-                        {
-                            *d += weight * (fr * fg * cc * cr) * a;
-                        }
+    let (kids, nk) = children(ic, nt);
+    // Coarse offset of parent ig from ic: 0, +1 or −1 (mod n_c).
+    let offset = |ig: usize| -> isize {
+        let off = (ig + nc - ic) % nc;
+        debug_assert!(off == 0 || off == 1 || off == nc - 1);
+        match off {
+            0 => 0,
+            1 => 1,
+            _ => -1,
+        }
+    };
+    // The θ-structure (children, neighbours, parents, coarse offsets) is the same on every
+    // row j: work it out once per coarse column, then run down the column.
+    for &(f, wr) in &kids[..nk] {
+        for di in -1isize..=1 {
+            let g = wrap(f, di, nt);
+            let (par, np) = parents(g, nt);
+            for &(ig, w) in &par[..np] {
+                let dc = offset(ig);
+                let weight = wr * w;
+                for dj in -1isize..=1 {
+                    if fine.five && di != 0 && dj != 0 {
+                        // The five-point fine level's corners are zero: nothing to add.
+                        continue;
+                    }
+                    let src = &fine.c[at(di, dj)];
+                    let dst = &mut coarse.c[at(dc, dj)];
+                    // Rows j0..j1 of the column; their neighbours jj = j + dj.
+                    let (j0, j1) = (usize::from(dj < 0), nz - usize::from(dj > 0));
+                    let len = j1 - j0;
+                    let jn = (j0 as isize + dj) as usize;
+                    let row = f * nz + j0..f * nz + j0 + len;
+                    let d = &mut dst[ic * nz + j0..ic * nz + j0 + len];
+                    let cr = &cmask[ic * nz + j0..ic * nz + j0 + len];
+                    let fg = &fmask[g * nz + jn..g * nz + jn + len];
+                    let cc = &cmask[ig * nz + jn..ig * nz + jn + len];
+                    // Row active (R) × column active (P) × coarse column active.
+                    for ((((d, a), fr), (fg, cc)), cr) in d
+                        .iter_mut()
+                        .zip(&src[row.clone()])
+                        .zip(&fmask[row])
+                        .zip(fg.iter().zip(cc))
+                        .zip(cr)
+                    {
+                        *d += weight * (fr * fg * cc * cr) * a;
                     }
                 }
             }
         }
-        for j in 0..nz {
-            let kc = ic * nz + j;
-            if cmask[kc] == 0.0 {
-                coarse.c[C][kc] = 1.0;
-            }
+    }
+    for j in 0..nz {
+        let kc = ic * nz + j;
+        if cmask[kc] == 0.0 {
+            coarse.c[C][kc] = 1.0;
         }
     }
 }
@@ -610,6 +625,67 @@ impl MgLevel {
         self.line_rhs.resize(half, 0.0);
         self.line_sol.clear();
         self.line_sol.resize(half, 0.0);
+        Ok(())
+    }
+
+    /// [`MgLevel::factor`] for a level whose operator and mask changed only in the θ-columns
+    /// `columns` (and, on the finest level, in the circumferential lines `rows`, the z-rows
+    /// whose W, C or E entries changed): the rounding of those columns, their axial lines and
+    /// those circumferential lines are redone, each by the same operations as in a full
+    /// factorization (the same bits). The level's vectors keep their size.
+    fn refactor_columns(
+        &mut self,
+        level: usize,
+        columns: &[bool],
+        rows: &[usize],
+    ) -> Result<(), ReynoldsError> {
+        let (nt, nz) = (self.a.nt, self.a.nz);
+        for i in (0..nt).filter(|&i| columns[i]) {
+            for (dst, src) in self.aw.c.iter_mut().zip(&self.a.c) {
+                for k in i * nz..(i + 1) * nz {
+                    dst[k] = Work::from_f64(src[k]);
+                }
+            }
+            for k in i * nz..(i + 1) * nz {
+                self.maskw[k] = Work::from_f64(self.mask[k]);
+            }
+        }
+        if level == 0 && !rows.is_empty() {
+            self.circumferential64
+                .refactor_lanes(&self.a.c[W], &self.a.c[C], &self.a.c[E], rows)
+                .and_then(|()| {
+                    self.circumferential
+                        .round_lanes_from(&self.circumferential64, rows)
+                })
+                .map_err(|e| line_error(level, "circumferential", e))?;
+        }
+        let half = nt.div_ceil(2) * nz;
+        let mut sub = vec![0.0; half];
+        let mut diag = vec![0.0; half];
+        let mut sup = vec![0.0; half];
+        let mut lanes = Vec::new();
+        for parity in 0..2 {
+            let lines = self.lines_of(parity);
+            lanes.clear();
+            lanes.extend((0..lines).filter(|&l| columns[2 * l + parity]));
+            if lanes.is_empty() {
+                continue;
+            }
+            for &l in &lanes {
+                let i = 2 * l + parity;
+                for j in 0..nz {
+                    let (k, t) = (i * nz + j, j * lines + l);
+                    sub[t] = self.a.c[S][k];
+                    diag[t] = self.a.c[C][k];
+                    sup[t] = self.a.c[N][k];
+                }
+            }
+            let m = lines * nz;
+            self.axial64[parity]
+                .refactor_lanes(&sub[..m], &diag[..m], &sup[..m], &lanes)
+                .and_then(|()| self.axial[parity].round_lanes_from(&self.axial64[parity], &lanes))
+                .map_err(|e| line_error(level, "axial", e))?;
+        }
         Ok(())
     }
 
@@ -848,9 +924,131 @@ impl Multigrid {
         }
         let fit = self.fit(grid, st, switch);
         if fit == Hierarchy::Built {
-            self.rebuild(grid, st, switch)?;
+            match self.changed_columns(grid, st, switch) {
+                Some(columns) => self.update_columns(grid, st, switch, &columns)?,
+                None => self.rebuild(grid, st, switch)?,
+            }
         }
         Ok(fit)
+    }
+
+    /// The θ-columns of the finest level in which the frozen system `st` with `switch` differs
+    /// from the one the hierarchy in hand was built for (any of the five entries of a row, to
+    /// the bit, or the mask), when they are at least one and at most a quarter of the columns:
+    /// a Newton step of one film step that switched a few nodes at the cavity edges, whose
+    /// matrix differs in the rows of those nodes and of their neighbours only
+    /// ([`Multigrid::update_columns`]). None otherwise (nothing built, another grid, or a matrix
+    /// that changed elsewhere too: a new time level or Newton iterate of ε).
+    fn changed_columns(
+        &self,
+        grid: &Grid,
+        st: &Stencil,
+        switch: Option<&[f64]>,
+    ) -> Option<Vec<bool>> {
+        let (Some(fine), Some(_)) = (self.levels.first(), self.coarsest.lu.as_ref()) else {
+            return None;
+        };
+        let a = &fine.a;
+        let (nt, nz) = (grid.n_theta, grid.n_z);
+        if !(a.five && a.nt == nt && a.nz == nz && fine.mask.len() == grid.len()) {
+            return None;
+        }
+        let old = [&a.c[C], &a.c[W], &a.c[E], &a.c[S], &a.c[N]];
+        let new = [&st.p, &st.w, &st.e, &st.s, &st.n];
+        let mut columns = vec![false; nt];
+        let mut count = 0;
+        for (i, column) in columns.iter_mut().enumerate() {
+            *column = (i * nz..(i + 1) * nz).any(|k| {
+                fine.mask[k] != fine_mask(grid, switch, k)
+                    || (0..5).any(|o| old[o][k].to_bits() != new[o][k].to_bits())
+            });
+            count += usize::from(*column);
+        }
+        (count > 0 && 4 * count <= nt).then_some(columns)
+    }
+
+    /// Brings the hierarchy to the frozen system `st` with `switch`, which differs from the one
+    /// it was built for only in the finest-level θ-columns `columns`
+    /// ([`Multigrid::changed_columns`]): the finest rows and mask of those columns, then on
+    /// each coarser level the columns whose Galerkin entries can see them — coarse column I
+    /// reads the fine columns 2I − 2 … 2I + 2 (its children, their θ-neighbours and the masks
+    /// of both) and the coarse masks at I − 1 … I + 1, which are the fine masks at 2I − 2 …
+    /// 2I + 2 — so a coarse column within three fine columns of a changed one (on the ring)
+    /// is recomputed; the rounding and line factors of the changed columns and of the
+    /// circumferential lines whose rows changed; the coarsest LU anew. Every recomputed value
+    /// comes from the same operations on the same inputs as in [`Multigrid::rebuild`], and
+    /// every kept one had its inputs unchanged: the hierarchy is the rebuilt one bit for bit
+    /// (tested), at the cost of the changed columns instead of all.
+    fn update_columns(
+        &mut self,
+        grid: &Grid,
+        st: &Stencil,
+        switch: Option<&[f64]>,
+        columns: &[bool],
+    ) -> Result<(), ReynoldsError> {
+        // An update that fails half way must not look like a finished hierarchy to `fit`.
+        self.coarsest.lu = None;
+        let (nt, nz) = (grid.n_theta, grid.n_z);
+        let depth = self.levels.len();
+        let mut rows = Vec::new();
+        {
+            let f = &mut self.levels[0];
+            let mut row_changed = vec![false; nz];
+            let new = [(C, &st.p), (W, &st.w), (E, &st.e), (S, &st.s), (N, &st.n)];
+            for i in (0..nt).filter(|&i| columns[i]) {
+                for j in 0..nz {
+                    let k = i * nz + j;
+                    for &(o, src) in &new {
+                        if f.a.c[o][k].to_bits() != src[k].to_bits() {
+                            row_changed[j] |= o == C || o == W || o == E;
+                            f.a.c[o][k] = src[k];
+                        }
+                    }
+                    f.mask[k] = fine_mask(grid, switch, k);
+                }
+            }
+            rows.extend((0..nz).filter(|&j| row_changed[j]));
+        }
+        let mut changed = vec![columns.to_vec()];
+        for l in 1..depth {
+            let (fine, coarse) = self.levels.split_at_mut(l);
+            let (f, c) = (&fine[l - 1], &mut coarse[0]);
+            let fnt = f.a.nt;
+            let cnt = coarse_len(fnt);
+            let fine_changed = &changed[l - 1];
+            let mut coarse_changed = vec![false; cnt];
+            for fc in (0..fnt).filter(|&fc| fine_changed[fc]) {
+                for d in 0..=3 {
+                    for g in [(fc + d) % fnt, (fc + fnt - d) % fnt] {
+                        if g % 2 == 0 {
+                            coarse_changed[g / 2] = true;
+                        }
+                    }
+                }
+            }
+            for ic in (0..cnt).filter(|&ic| coarse_changed[ic]) {
+                for j in 0..nz {
+                    c.mask[ic * nz + j] = f.mask[2 * ic * nz + j];
+                }
+            }
+            for ic in (0..cnt).filter(|&ic| coarse_changed[ic]) {
+                for v in &mut c.a.c {
+                    v[ic * nz..(ic + 1) * nz].fill(0.0);
+                }
+            }
+            for ic in (0..cnt).filter(|&ic| coarse_changed[ic]) {
+                galerkin_column(&f.a, &f.mask, &c.mask, &mut c.a, ic);
+            }
+            changed.push(coarse_changed);
+        }
+        for l in 0..depth - 1 {
+            let level_rows: &[usize] = if l == 0 { &rows } else { &[] };
+            self.levels[l].refactor_columns(l, &changed[l], level_rows)?;
+        }
+        let last = &mut self.levels[depth - 1];
+        last.round_operator();
+        self.coarsest.factor(&last.a)?;
+        Ok(())
     }
 
     /// Builds the hierarchy for `st` whatever the previous one was.

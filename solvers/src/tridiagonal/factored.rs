@@ -186,6 +186,66 @@ impl<T: Real> InterleavedFactors<T> {
     }
 }
 
+impl<T: Real> InterleavedFactors<T> {
+    /// The lines `lanes` of this rounded factorization become those of `f` rounded to `T`, as
+    /// [`round_from`](Self::round_from) rounds them (the same checks); the other lines keep
+    /// theirs. `f` must have this factorization's kind and shape (else, or on a check that
+    /// fails, the factorization is empty and this is an error).
+    pub fn round_lanes_from(
+        &mut self,
+        f: &InterleavedFactors,
+        lanes: &[usize],
+    ) -> Result<(), TridiagonalError> {
+        if (f.kind, f.m, f.lines) != (self.kind, self.m, self.lines)
+            || self.sub.len() < f.m * f.lines
+        {
+            let (m, lines) = (f.m, f.lines);
+            self.invalidate();
+            return Err(TridiagonalError::BatchSizeMismatch {
+                m,
+                lines,
+                sub: self.sub.len(),
+                diag: 0,
+                sup: 0,
+                rhs: 0,
+                x: 0,
+            });
+        }
+        let rows = if f.kind == Kind::Periodic {
+            f.m - 1
+        } else {
+            f.m
+        };
+        for &l in lanes {
+            for i in 0..f.m {
+                let k = i * f.lines + l;
+                self.sub[k] = T::from_f64(f.sub[k]);
+                self.recip[k] = T::from_f64(f.recip[k]);
+                self.upper[k] = T::from_f64(f.upper[k]);
+                self.fill[k] = T::from_f64(f.fill[k]);
+                self.carried[k] = T::from_f64(f.carried[k]);
+            }
+            self.d_star[l] = T::from_f64(f.d_star[l]);
+            for i in 0..rows {
+                let k = i * f.lines + l;
+                let r = self.recip[k];
+                if r == T::ZERO || !r.finite() {
+                    self.invalidate();
+                    return Err(zero_pivot(l, i, 1.0 / f.recip[k], f64::NAN));
+                }
+            }
+            if f.kind == Kind::Periodic {
+                let d = self.d_star[l];
+                if d == T::ZERO || !d.finite() {
+                    self.invalidate();
+                    return Err(zero_pivot(l, f.m - 1, f.d_star[l], f64::NAN));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
 impl InterleavedFactors {
     /// Factors `lines` Dirichlet lines (Thomas; `sub` of row 0 and `sup` of row m−1 ignored).
     /// On an error the factorization is empty: a later [`solve`](Self::solve) is an error, not
@@ -217,33 +277,91 @@ impl InterleavedFactors {
         self.resize(Kind::Dirichlet, m, lines, n);
         self.sub.copy_from_slice(sub);
         for l in 0..lines {
-            // As `thomas_solve`, coefficient part only.
-            let a0 = if m > 1 { sup[l] } else { 0.0 };
-            let d0 = diag[l];
-            let scale = d0.abs() + a0.abs();
-            if !pivot_ok(d0, scale) {
-                return Err(zero_pivot(l, 0, d0, scale));
-            }
-            let r = 1.0 / d0;
-            self.recip[l] = r;
-            let mut u_prev = a0 * r;
-            self.upper[l] = u_prev;
-            for i in 1..m {
-                let k = i * lines + l;
-                let a = if i + 1 < m { sup[k] } else { 0.0 };
-                let b = sub[k];
-                let pivot = diag[k] - b * u_prev;
-                let scale = b.abs() + diag[k].abs() + a.abs();
-                if !pivot_ok(pivot, scale) {
-                    return Err(zero_pivot(l, i, pivot, scale));
-                }
-                let r = 1.0 / pivot;
-                self.recip[k] = r;
-                u_prev = a * r;
-                self.upper[k] = u_prev;
-            }
+            self.factor_dirichlet_lane(l, sub, diag, sup)?;
         }
         Ok(())
+    }
+
+    /// Line `l` of a Dirichlet factorization of this shape, from the interleaved coefficients.
+    fn factor_dirichlet_lane(
+        &mut self,
+        l: usize,
+        sub: &[f64],
+        diag: &[f64],
+        sup: &[f64],
+    ) -> Result<(), TridiagonalError> {
+        let (m, lines) = (self.m, self.lines);
+        // As `thomas_solve`, coefficient part only.
+        let a0 = if m > 1 { sup[l] } else { 0.0 };
+        let d0 = diag[l];
+        let scale = d0.abs() + a0.abs();
+        if !pivot_ok(d0, scale) {
+            return Err(zero_pivot(l, 0, d0, scale));
+        }
+        let r = 1.0 / d0;
+        self.recip[l] = r;
+        let mut u_prev = a0 * r;
+        self.upper[l] = u_prev;
+        for i in 1..m {
+            let k = i * lines + l;
+            let a = if i + 1 < m { sup[k] } else { 0.0 };
+            let b = sub[k];
+            let pivot = diag[k] - b * u_prev;
+            let scale = b.abs() + diag[k].abs() + a.abs();
+            if !pivot_ok(pivot, scale) {
+                return Err(zero_pivot(l, i, pivot, scale));
+            }
+            let r = 1.0 / pivot;
+            self.recip[k] = r;
+            u_prev = a * r;
+            self.upper[k] = u_prev;
+        }
+        Ok(())
+    }
+
+    /// Re-factors only the lines `lanes` of the factorization in hand (same kind, m and line
+    /// count), from interleaved coefficients of which only those lines are read: the others
+    /// keep their factors. Each line is factored by the same operations as in
+    /// [`factor_dirichlet`](Self::factor_dirichlet) / [`factor_periodic`](Self::factor_periodic),
+    /// so the result is bit for bit a full factorization of coefficients that differ from the
+    /// last ones only on these lines. On an error (a vanishing pivot, or a shape that does not
+    /// match) the factorization is empty.
+    pub fn refactor_lanes(
+        &mut self,
+        sub: &[f64],
+        diag: &[f64],
+        sup: &[f64],
+        lanes: &[usize],
+    ) -> Result<(), TridiagonalError> {
+        let (m, lines, kind) = (self.m, self.lines, self.kind);
+        let min_m = if kind == Kind::Periodic { 3 } else { 1 };
+        let out = sizes_ok(m, lines, sub, diag, sup, min_m).and_then(|_| {
+            for &l in lanes {
+                if l >= lines {
+                    return Err(TridiagonalError::BatchSizeMismatch {
+                        m,
+                        lines,
+                        sub: sub.len(),
+                        diag: diag.len(),
+                        sup: sup.len(),
+                        rhs: l,
+                        x: l,
+                    });
+                }
+                for i in 0..m {
+                    self.sub[i * lines + l] = sub[i * lines + l];
+                }
+                match kind {
+                    Kind::Dirichlet => self.factor_dirichlet_lane(l, sub, diag, sup)?,
+                    Kind::Periodic => self.factor_periodic_lane(l, sub, diag, sup)?,
+                }
+            }
+            Ok(())
+        });
+        if out.is_err() {
+            self.invalidate();
+        }
+        out
     }
 
     /// Factors `lines` periodic lines (modified Thomas; `sub` of row 0 and `sup` of row m−1
@@ -275,47 +393,44 @@ impl InterleavedFactors {
         let n = sizes_ok(m, lines, sub, diag, sup, 3)?;
         self.resize(Kind::Periodic, m, lines, n);
         self.sub.copy_from_slice(sub);
-        let last = m - 1;
         for l in 0..lines {
-            // As `cyclic_thomas_solve` (m ≥ 3), coefficient part only.
-            let at = |i: usize| i * lines + l;
-            let (b, d, a) = (sub[l], diag[l], sup[l]);
-            let scale = b.abs() + d.abs() + a.abs();
-            if !pivot_ok(d, scale) {
-                return Err(zero_pivot(l, 0, d, scale));
-            }
-            let r = 1.0 / d;
-            let mut u_prev = a * r;
-            let mut f_prev = b * r;
-            self.recip[l] = r;
-            self.upper[l] = u_prev;
-            self.fill[l] = f_prev;
-            let (b_last, d_last, a_last) = (sub[at(last)], diag[at(last)], sup[at(last)]);
-            let scale_last = b_last.abs() + d_last.abs() + a_last.abs();
-            let carried_tol = FLUSH_RTOL * scale_last;
-            let mut carried = a_last;
-            self.carried[l] = carried;
-            let mut d_star = d_last - carried * f_prev;
-            carried = flush(-carried * u_prev, carried_tol);
-            for i in 1..last - 1 {
-                let k = at(i);
-                let (b, d, a) = (sub[k], diag[k], sup[k]);
-                let pivot = d - b * u_prev;
-                let scale = b.abs() + d.abs() + a.abs();
-                if !pivot_ok(pivot, scale) {
-                    return Err(zero_pivot(l, i, pivot, scale));
-                }
-                let r = 1.0 / pivot;
-                u_prev = a * r;
-                f_prev = flush(-(b * f_prev) * r, FLUSH_RTOL);
-                self.recip[k] = r;
-                self.upper[k] = u_prev;
-                self.fill[k] = f_prev;
-                self.carried[k] = carried;
-                d_star -= carried * f_prev;
-                carried = flush(-carried * u_prev, carried_tol);
-            }
-            let i = last - 1;
+            self.factor_periodic_lane(l, sub, diag, sup)?;
+        }
+        Ok(())
+    }
+
+    /// Line `l` of a periodic factorization of this shape (m ≥ 3), from the interleaved
+    /// coefficients.
+    fn factor_periodic_lane(
+        &mut self,
+        l: usize,
+        sub: &[f64],
+        diag: &[f64],
+        sup: &[f64],
+    ) -> Result<(), TridiagonalError> {
+        let (m, lines) = (self.m, self.lines);
+        let last = m - 1;
+        // As `cyclic_thomas_solve` (m ≥ 3), coefficient part only.
+        let at = |i: usize| i * lines + l;
+        let (b, d, a) = (sub[l], diag[l], sup[l]);
+        let scale = b.abs() + d.abs() + a.abs();
+        if !pivot_ok(d, scale) {
+            return Err(zero_pivot(l, 0, d, scale));
+        }
+        let r = 1.0 / d;
+        let mut u_prev = a * r;
+        let mut f_prev = b * r;
+        self.recip[l] = r;
+        self.upper[l] = u_prev;
+        self.fill[l] = f_prev;
+        let (b_last, d_last, a_last) = (sub[at(last)], diag[at(last)], sup[at(last)]);
+        let scale_last = b_last.abs() + d_last.abs() + a_last.abs();
+        let carried_tol = FLUSH_RTOL * scale_last;
+        let mut carried = a_last;
+        self.carried[l] = carried;
+        let mut d_star = d_last - carried * f_prev;
+        carried = flush(-carried * u_prev, carried_tol);
+        for i in 1..last - 1 {
             let k = at(i);
             let (b, d, a) = (sub[k], diag[k], sup[k]);
             let pivot = d - b * u_prev;
@@ -324,18 +439,35 @@ impl InterleavedFactors {
                 return Err(zero_pivot(l, i, pivot, scale));
             }
             let r = 1.0 / pivot;
-            let f_m2 = (a - b * f_prev) * r;
+            u_prev = a * r;
+            f_prev = flush(-(b * f_prev) * r, FLUSH_RTOL);
             self.recip[k] = r;
-            self.upper[k] = 0.0;
-            self.fill[k] = f_m2;
-            carried += b_last;
+            self.upper[k] = u_prev;
+            self.fill[k] = f_prev;
             self.carried[k] = carried;
-            d_star -= carried * f_m2;
-            if !pivot_ok(d_star, scale_last) {
-                return Err(zero_pivot(l, last, d_star, scale_last));
-            }
-            self.d_star[l] = d_star;
+            d_star -= carried * f_prev;
+            carried = flush(-carried * u_prev, carried_tol);
         }
+        let i = last - 1;
+        let k = at(i);
+        let (b, d, a) = (sub[k], diag[k], sup[k]);
+        let pivot = d - b * u_prev;
+        let scale = b.abs() + d.abs() + a.abs();
+        if !pivot_ok(pivot, scale) {
+            return Err(zero_pivot(l, i, pivot, scale));
+        }
+        let r = 1.0 / pivot;
+        let f_m2 = (a - b * f_prev) * r;
+        self.recip[k] = r;
+        self.upper[k] = 0.0;
+        self.fill[k] = f_m2;
+        carried += b_last;
+        self.carried[k] = carried;
+        d_star -= carried * f_m2;
+        if !pivot_ok(d_star, scale_last) {
+            return Err(zero_pivot(l, last, d_star, scale_last));
+        }
+        self.d_star[l] = d_star;
         Ok(())
     }
 }

@@ -680,3 +680,112 @@ fn real_cavity_iteration_growth_is_bounded() {
         "1° step cavity: iterations {step_it:?} grow more than 1.5×"
     );
 }
+
+/// A hierarchy updated in the θ-columns where a few switches changed
+/// ([`Multigrid::update_columns`], the Newton loop's case) is the hierarchy rebuilt from
+/// scratch, bit for bit: every level's operator and mask, their single-precision copies, and
+/// the V-cycle's answer for random right-hand sides (which runs through the line factors and
+/// the coarsest LU). On an even and an odd ring (the odd one's coarse ring is non-uniform at
+/// the seam), with switches flipped at the seam, at the groove's edge and in the middle, in a
+/// time step and a steady film; and the update must have been taken, not a rebuild.
+#[test]
+fn a_hierarchy_updated_in_the_switched_columns_is_the_rebuilt_one() {
+    use super::super::discretization::{Level, TimeTerm, assemble};
+    let half = |grid: &Grid, k: usize| diverging_half(grid, k);
+    for (nt, nz, dt) in [(120, 31, Some(STEP)), (75, 15, Some(STEP)), (60, 15, None)] {
+        let (s, st0, g0) = frozen_system(
+            compressor(LinearSolver::MultigridKrylov, nt, nz),
+            [0.1, -0.8],
+            dt,
+            &half,
+        );
+        let grid = &s.grid;
+        let mut mg = Multigrid::default();
+        mg.setup(grid, &st0, Some(&g0)).unwrap();
+        let unknown = |k: usize| grid.kind[k] == NodeKind::Unknown;
+        // Flip sets: the seam (columns nt − 1 and 0), the middle, and three spread nodes.
+        let flips: [Vec<usize>; 3] = [
+            vec![(nt - 1) * nz + nz / 2, nz / 3],
+            vec![(nt / 2) * nz + nz / 2],
+            vec![
+                (nt / 4) * nz + 2,
+                (nt / 4 + 1) * nz + 3,
+                (3 * nt / 4) * nz + nz / 2,
+            ],
+        ];
+        let mut g = g0.clone();
+        let mut random = rng(nt as u64 * 7919 + nz as u64);
+        for set in flips {
+            for k in set.into_iter().filter(|&k| unknown(k)) {
+                g[k] = 1.0 - g[k];
+            }
+            // The stencil of the new switch (the Newton loop's re-assembly).
+            let prep_h: Vec<f64>;
+            let st = {
+                let mut s2 =
+                    ReynoldsSolver::new(compressor(LinearSolver::MultigridKrylov, nt, nz)).unwrap();
+                let prep = s2.prepare([0.1, -0.8], &running(), None).unwrap();
+                prep_h = prep.h.node.clone();
+                let old: Vec<f64> = prep_h.iter().map(|h| 0.9 * h).collect();
+                let time = match dt {
+                    None => TimeTerm::Steady,
+                    Some(dt) => TimeTerm::Step {
+                        dt,
+                        old_content: &old,
+                        old_outflow: None,
+                    },
+                };
+                let level = Level {
+                    grid: &s2.grid,
+                    h: &prep.h.node,
+                    h_face: &prep.h.face_theta,
+                    k_theta: &s2.k_theta,
+                    k_z: &s2.k_z,
+                    speed: prep.speed,
+                };
+                let mut st = Stencil::default();
+                assemble(&level, &g, &s2.dirichlet, time, &mut st);
+                st
+            };
+            assert!(
+                mg.changed_columns(grid, &st, Some(&g)).is_some(),
+                "{nt} × {nz}: a few switched nodes must take the update"
+            );
+            assert_eq!(mg.setup(grid, &st, Some(&g)).unwrap(), Hierarchy::Built);
+            let mut fresh = Multigrid::default();
+            fresh.rebuild(grid, &st, Some(&g)).unwrap();
+            assert_eq!(mg.levels.len(), fresh.levels.len());
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let bits32 = |v: &[Work]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            for (l, (a, b)) in mg.levels.iter().zip(&fresh.levels).enumerate() {
+                for o in 0..9 {
+                    assert!(
+                        bits(&a.a.c[o]) == bits(&b.a.c[o]),
+                        "{nt}: level {l} entry {o}"
+                    );
+                    assert!(
+                        bits32(&a.aw.c[o]) == bits32(&b.aw.c[o]),
+                        "{nt}: level {l} f32 entry {o}"
+                    );
+                }
+                assert!(bits(&a.mask) == bits(&b.mask), "{nt}: level {l} mask");
+                assert!(
+                    bits32(&a.maskw) == bits32(&b.maskw),
+                    "{nt}: level {l} f32 mask"
+                );
+            }
+            for _ in 0..3 {
+                let r: Vec<f64> = (0..grid.len())
+                    .map(|k| if unknown(k) { random() - 0.5 } else { 0.0 })
+                    .collect();
+                let (mut za, mut zb) = (vec![0.0; grid.len()], vec![0.0; grid.len()]);
+                mg.apply(&r, &mut za).unwrap();
+                fresh.apply(&r, &mut zb).unwrap();
+                assert!(
+                    bits(&za) == bits(&zb),
+                    "{nt} × {nz}: V-cycle answers differ"
+                );
+            }
+        }
+    }
+}
