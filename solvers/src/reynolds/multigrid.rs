@@ -606,15 +606,7 @@ impl MgLevel {
         let mut sup = vec![0.0; half];
         for parity in 0..2 {
             let lines = self.lines_of(parity);
-            for l in 0..lines {
-                let i = 2 * l + parity;
-                for j in 0..nz {
-                    let (k, t) = (i * nz + j, j * lines + l);
-                    sub[t] = self.a.c[S][k];
-                    diag[t] = self.a.c[C][k];
-                    sup[t] = self.a.c[N][k];
-                }
-            }
+            self.stage_axial(parity, 0..lines, &mut sub, &mut diag, &mut sup);
             let m = lines * nz;
             self.axial64[parity]
                 .factor_dirichlet(nz, lines, &sub[..m], &diag[..m], &sup[..m])
@@ -626,6 +618,28 @@ impl MgLevel {
         self.line_sol.clear();
         self.line_sol.resize(half, 0.0);
         Ok(())
+    }
+
+    /// The axial lines `lanes` of one zebra `parity` (line l is column i = 2 l + parity) into
+    /// the interleaved staging of the line factorization (row j of line l at j · lines + l).
+    fn stage_axial(
+        &self,
+        parity: usize,
+        lanes: impl Iterator<Item = usize>,
+        sub: &mut [f64],
+        diag: &mut [f64],
+        sup: &mut [f64],
+    ) {
+        let (nz, lines) = (self.a.nz, self.lines_of(parity));
+        for l in lanes {
+            let i = 2 * l + parity;
+            for j in 0..nz {
+                let (k, t) = (i * nz + j, j * lines + l);
+                sub[t] = self.a.c[S][k];
+                diag[t] = self.a.c[C][k];
+                sup[t] = self.a.c[N][k];
+            }
+        }
     }
 
     /// [`MgLevel::factor`] for a level whose operator and mask changed only in the θ-columns
@@ -671,15 +685,7 @@ impl MgLevel {
             if lanes.is_empty() {
                 continue;
             }
-            for &l in &lanes {
-                let i = 2 * l + parity;
-                for j in 0..nz {
-                    let (k, t) = (i * nz + j, j * lines + l);
-                    sub[t] = self.a.c[S][k];
-                    diag[t] = self.a.c[C][k];
-                    sup[t] = self.a.c[N][k];
-                }
-            }
+            self.stage_axial(parity, lanes.iter().copied(), &mut sub, &mut diag, &mut sup);
             let m = lines * nz;
             self.axial64[parity]
                 .refactor_lanes(&sub[..m], &diag[..m], &sup[..m], &lanes)

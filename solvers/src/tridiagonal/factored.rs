@@ -160,26 +160,37 @@ impl<T: Real> InterleavedFactors<T> {
         round(&mut self.fill, &f.fill);
         round(&mut self.carried, &f.carried);
         round(&mut self.d_star, &f.d_star);
+        for l in 0..f.lines {
+            self.check_rounded_lane(f, l)?;
+        }
+        Ok(())
+    }
+
+    /// After rounding line `l` of `f`: a reciprocal pivot or d* that rounded to 0 or ∞ is an
+    /// error naming its line and row, and leaves the factorization empty.
+    fn check_rounded_lane(
+        &mut self,
+        f: &InterleavedFactors,
+        l: usize,
+    ) -> Result<(), TridiagonalError> {
         let rows = if f.kind == Kind::Periodic {
             f.m - 1
         } else {
             f.m
         };
-        for l in 0..f.lines {
-            for i in 0..rows {
-                let k = i * f.lines + l;
-                let r = self.recip[k];
-                if r == T::ZERO || !r.finite() {
-                    self.invalidate();
-                    return Err(zero_pivot(l, i, 1.0 / f.recip[k], f64::NAN));
-                }
+        for i in 0..rows {
+            let k = i * f.lines + l;
+            let r = self.recip[k];
+            if r == T::ZERO || !r.finite() {
+                self.invalidate();
+                return Err(zero_pivot(l, i, 1.0 / f.recip[k], f64::NAN));
             }
-            if f.kind == Kind::Periodic {
-                let d = self.d_star[l];
-                if d == T::ZERO || !d.finite() {
-                    self.invalidate();
-                    return Err(zero_pivot(l, f.m - 1, f.d_star[l], f64::NAN));
-                }
+        }
+        if f.kind == Kind::Periodic {
+            let d = self.d_star[l];
+            if d == T::ZERO || !d.finite() {
+                self.invalidate();
+                return Err(zero_pivot(l, f.m - 1, f.d_star[l], f64::NAN));
             }
         }
         Ok(())
@@ -198,6 +209,7 @@ impl<T: Real> InterleavedFactors<T> {
     ) -> Result<(), TridiagonalError> {
         if (f.kind, f.m, f.lines) != (self.kind, self.m, self.lines)
             || self.sub.len() < f.m * f.lines
+            || lanes.iter().any(|&l| l >= f.lines)
         {
             let (m, lines) = (f.m, f.lines);
             self.invalidate();
@@ -211,11 +223,6 @@ impl<T: Real> InterleavedFactors<T> {
                 x: 0,
             });
         }
-        let rows = if f.kind == Kind::Periodic {
-            f.m - 1
-        } else {
-            f.m
-        };
         for &l in lanes {
             for i in 0..f.m {
                 let k = i * f.lines + l;
@@ -226,21 +233,7 @@ impl<T: Real> InterleavedFactors<T> {
                 self.carried[k] = T::from_f64(f.carried[k]);
             }
             self.d_star[l] = T::from_f64(f.d_star[l]);
-            for i in 0..rows {
-                let k = i * f.lines + l;
-                let r = self.recip[k];
-                if r == T::ZERO || !r.finite() {
-                    self.invalidate();
-                    return Err(zero_pivot(l, i, 1.0 / f.recip[k], f64::NAN));
-                }
-            }
-            if f.kind == Kind::Periodic {
-                let d = self.d_star[l];
-                if d == T::ZERO || !d.finite() {
-                    self.invalidate();
-                    return Err(zero_pivot(l, f.m - 1, f.d_star[l], f64::NAN));
-                }
-            }
+            self.check_rounded_lane(f, l)?;
         }
         Ok(())
     }
