@@ -1290,6 +1290,7 @@ impl Stepper<'_> {
                 continue;
             }
             if converged {
+                problem.check_outputs(&cur)?;
                 return Ok(self.accept(cur, iterations));
             }
             if iterations >= params.max_newton_iterations {
@@ -1475,6 +1476,7 @@ impl Stepper<'_> {
                 .at
                 .newton_failed(iterations, cur.res, cur.eps));
         }
+        problem.check_outputs(&cur)?;
         self.stats.stalled += 1;
         self.stats.max_stalled = self.stats.max_stalled.max(cur.res);
         self.stats.max_newton = self.stats.max_newton.max(iterations);
@@ -1568,6 +1570,24 @@ impl<S> StepProblem<'_, S> {
             r,
             res: norm(r) / self.scale,
         })
+    }
+
+    /// An iterate about to be accepted has finite friction outputs: a film model's relaxed
+    /// trial leaves them out (NaN, [`super::ReynoldsFilm`]) and is never accepted — this
+    /// says so, naming the step, should that ever break.
+    fn check_outputs(&self, cur: &Iterate<S>) -> Result<(), InverseError> {
+        let r = &cur.response;
+        for (quantity, v) in [
+            ("power loss", r.power_loss),
+            ("journal friction torque", r.friction_torque_journal),
+            ("bearing friction torque", r.friction_torque_bearing),
+        ] {
+            if !v.is_finite() {
+                let source = FilmModelError::NonFinite { quantity };
+                return Err(self.target.at.film_error(cur.eps, source));
+            }
+        }
+        Ok(())
     }
 
     /// The film cannot carry the load at this iterate.
@@ -1690,6 +1710,54 @@ mod tests {
             }
             Ok((toy_response(f, e), e))
         }
+    }
+
+    /// A film whose responses lack their friction outputs (as a relaxed trial of the Reynolds
+    /// film does): accepting one is an error naming the quantity, never a NaN in the results.
+    #[test]
+    fn an_accepted_response_without_friction_outputs_is_an_error() {
+        struct NoFriction(Spring);
+        impl FilmModel for NoFriction {
+            type State = [f64; 2];
+            fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
+                e
+            }
+            fn step(
+                &mut self,
+                s: &[f64; 2],
+                e: [f64; 2],
+                dt: f64,
+                c: &OperatingConditions,
+            ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
+                let (mut r, next) = self.0.step(s, e, dt, c)?;
+                r.power_loss = f64::NAN;
+                Ok((r, next))
+            }
+        }
+        let mut film = NoFriction(Spring {
+            k: 100.0,
+            d: 0.0,
+            nan_beyond: 2.0,
+        });
+        let err = solve_inverse(
+            &InverseParams::default(),
+            &history([50.0, 0.0]),
+            &mut film,
+            &mut NoObserver,
+        )
+        .unwrap_err();
+        assert!(
+            matches!(
+                err,
+                InverseError::Film {
+                    source: FilmModelError::NonFinite {
+                        quantity: "power loss"
+                    },
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
     }
 
     fn history(w: [f64; 2]) -> OperatingHistory<ConstantLoad> {

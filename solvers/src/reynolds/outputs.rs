@@ -44,6 +44,7 @@ pub(crate) fn film_solution(
     eps: [f64; 2],
     core: &Core,
     mu: &[f64],
+    friction: bool,
 ) -> FilmSolution {
     let grid = &core.grid;
     let (nt, nz) = (grid.n_theta, grid.n_z);
@@ -59,7 +60,16 @@ pub(crate) fn film_solution(
     };
     let emag = eps[0].hypot(eps[1]);
     let flows = BoundaryFlows::new(params, core);
-    let shear = Shear::new(params, core, mu, &pressure, speed);
+    // A trial's friction outputs are not evaluated (`ReynoldsSolver::solve_trial_step_to`).
+    let shear = if friction {
+        Shear::new(params, core, mu, &pressure, speed)
+    } else {
+        Shear {
+            torque_journal: f64::NAN,
+            torque_bearing: f64::NAN,
+            power_loss: f64::NAN,
+        }
+    };
 
     let shape = (nt, nz);
     let to_arr = |v: Vec<f64>| Array2::from_shape_vec(shape, v).expect("grid shape");

@@ -302,6 +302,31 @@ fn a_relaxed_step_is_close_and_finishes_to_the_tight_answer() {
     let (own, _) = fresh().solve_step_to(&state, &input, None, 1e-14).unwrap();
     assert_eq!(own.film_force, plain.film_force);
     assert_eq!(own.linear_iterations, plain.linear_iterations);
+    // A trial step (the inverse solver's relaxed iterates) is the same loose solve bit for bit
+    // without its friction outputs, which are NaN (never accepted, never read).
+    let (loose, loose_state) = fresh().solve_step_to(&state, &input, None, 1e-6).unwrap();
+    let (trial, trial_state) = fresh()
+        .solve_trial_step_to(&state, &input, None, 1e-6)
+        .unwrap();
+    assert!(loose.power_loss.is_finite() && loose.friction_torque_journal.is_finite());
+    assert!(trial.power_loss.is_nan());
+    assert!(trial.friction_torque_journal.is_nan() && trial.friction_torque_bearing.is_nan());
+    assert_eq!(trial.film_force, loose.film_force);
+    assert_eq!(trial.side_leakage, loose.side_leakage);
+    assert_eq!(trial.supply_flow, loose.supply_flow);
+    assert_eq!(trial.pressure, loose.pressure);
+    assert_eq!(trial_state.density_ratio, loose_state.density_ratio);
+    assert_eq!(trial_state.boundary_volume, loose_state.boundary_volume);
+    // The solver is back to full outputs after a trial.
+    let mut s2 = fresh();
+    s2.solve_trial_step_to(&state, &input, None, 1e-6).unwrap();
+    assert!(
+        s2.solve_step(&state, &input)
+            .unwrap()
+            .0
+            .power_loss
+            .is_finite()
+    );
 }
 
 /// Lemke's complementary pivoting (\[Lemke1965\]; the LCP oracle of \[Giacopini2010\]) on a
