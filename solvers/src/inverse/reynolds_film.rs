@@ -43,9 +43,10 @@
 //! from the loose answer to the solver's tolerance (one step: the same answer as a tight
 //! solve), so the iterate the caller accepts is never a loose film. A step left loose is a
 //! trial (`ReynoldsSolver::solve_trial_step_to`): its friction torques and power loss are NaN,
-//! never read (the inverse solver accepts only tightly solved iterates, and its tests assert
-//! that an accepted response's power loss is finite); the dissipation sum they skip was 3.7 %
-//! of the instructions of the compressor-size cycle when evaluated for every film step.
+//! never read (the inverse solver accepts only tightly solved iterates, and refuses, naming
+//! the step, an accepted response whose friction outputs are not finite); the dissipation sum
+//! they skip was 3.7 % of the instructions of the compressor-size cycle when evaluated for
+//! every film step.
 //!
 //! Sweep iterations reported per step: the Krylov (ADI-preconditioned) iterations summed over
 //! the switch iterations of the accepted solve.

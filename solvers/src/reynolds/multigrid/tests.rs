@@ -690,7 +690,6 @@ fn real_cavity_iteration_growth_is_bounded() {
 /// time step and a steady film; and the update must have been taken, not a rebuild.
 #[test]
 fn a_hierarchy_updated_in_the_switched_columns_is_the_rebuilt_one() {
-    use super::super::discretization::{Level, TimeTerm, assemble};
     let half = |grid: &Grid, k: usize| diverging_half(grid, k);
     for (nt, nz, dt) in [(120, 31, Some(STEP)), (75, 15, Some(STEP)), (60, 15, None)] {
         let (s, st0, g0) = frozen_system(
@@ -719,34 +718,13 @@ fn a_hierarchy_updated_in_the_switched_columns_is_the_rebuilt_one() {
             for k in set.into_iter().filter(|&k| unknown(k)) {
                 g[k] = 1.0 - g[k];
             }
-            // The stencil of the new switch (the Newton loop's re-assembly).
-            let prep_h: Vec<f64>;
-            let st = {
-                let mut s2 =
-                    ReynoldsSolver::new(compressor(LinearSolver::MultigridKrylov, nt, nz)).unwrap();
-                let prep = s2.prepare([0.1, -0.8], &running(), None).unwrap();
-                prep_h = prep.h.node.clone();
-                let old: Vec<f64> = prep_h.iter().map(|h| 0.9 * h).collect();
-                let time = match dt {
-                    None => TimeTerm::Steady,
-                    Some(dt) => TimeTerm::Step {
-                        dt,
-                        old_content: &old,
-                        old_outflow: None,
-                    },
-                };
-                let level = Level {
-                    grid: &s2.grid,
-                    h: &prep.h.node,
-                    h_face: &prep.h.face_theta,
-                    k_theta: &s2.k_theta,
-                    k_z: &s2.k_z,
-                    speed: prep.speed,
-                };
-                let mut st = Stencil::default();
-                assemble(&level, &g, &s2.dirichlet, time, &mut st);
-                st
-            };
+            // The stencil of the new switch (what the Newton loop's re-assembly gives).
+            let (_, st, _) = frozen_system(
+                compressor(LinearSolver::MultigridKrylov, nt, nz),
+                [0.1, -0.8],
+                dt,
+                &|_, k| g[k],
+            );
             assert!(
                 mg.changed_columns(grid, &st, Some(&g)).is_some(),
                 "{nt} × {nz}: a few switched nodes must take the update"
