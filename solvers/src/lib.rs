@@ -34,6 +34,7 @@
 //! grooved bearing, the mobility answer beside it) show the three everyday jobs end to end.
 //!
 //! Modules
+//! - [`banded`]: banded LU with partial pivoting (the multigrid's coarsest-level solve).
 //! - [`closed_form`]: the closed-form film models of \[Flores2006\] and \[Flores2009\] for a moving journal (short and long
 //!   bearing, Sommerfeld and Gumbel films, Pinkus–Sternlicht) and their static equilibrium.
 //! - [`tridiagonal`]: the line kernels of the ADI sweeps: Thomas for Dirichlet lines and Yu &
@@ -61,6 +62,7 @@
 //!   Krylov solve with a sparse-LU oracle, outputs (force, h_min, p_max, flows, power loss) and
 //!   the steady load → eccentricity Newton solve.
 
+pub mod banded;
 pub mod closed_form;
 pub mod elastic;
 pub mod heat_balance;

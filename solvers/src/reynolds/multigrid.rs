@@ -24,7 +24,7 @@
 //!
 //! Semi-coarsening in θ only (\[VennerLubrecht2000\]; \[Trottenberg2001\],
 //! ch. 5 on anisotropic operators): the coarse ring keeps the even fine columns,
-//! n_c = ⌈n_θ/2⌉, level after level until n_θ ≤ [`COARSEST_THETA`] (120 → 60 → 30 → 15 → 8 on
+//! n_c = ⌈n_θ/2⌉, level after level until n_θ ≤ [`COARSEST_THETA`] (120 → 60 → 30 → 15 → 8 → 4 on
 //! the default grid). The z-lines stay whole on every level, so the axial line solve is exact
 //! across z however strongly the operator couples z (the semi-coarsened levels are increasingly
 //! z-dominated: the coupling ratio (Δx/Δz)² grows 4× per level).
@@ -78,7 +78,7 @@
 //!                                 finest level only)
 //!                                 axial lines, even i then odd i (zebra; θ-neighbours lagged)
 //!                        b_{l+1} = R (b_l − A_l x_l)
-//!   coarsest level:      x_L = A_L⁻¹ b_L          (faer sparse LU; n_θ ≤ 8, whole z-lines)
+//!   coarsest level:      x_L = A_L⁻¹ b_L          (banded LU; n_θ ≤ 4, whole z-lines)
 //!   back up:             x_l += P x_{l+1}
 //!                        S_post:  axial lines odd i then even i, circumferential lines
 //!                                 (finest level only)
@@ -136,8 +136,8 @@
 //!
 //! Stationary V-cycle contraction ≈ 0.1 per cycle on the full film, independent of the grid.
 //! FGMRES iterations for a 1e-10 solve from the Dirichlet start, ε = 0.8 compressor bearing,
-//! 60×15 / 120×31 / 240×61: steady full film 7 / 7 / 7; 1° step, full 7 / 7 / 7; 1° step with
-//! the diverging half cavitated 6 / 7 / 7; a 1° step at its converged cavity 7 / 8 / 9; the
+//! 60×15 / 120×31 / 240×61: steady full film 7 / 7 / 7; 1° step, full 7 / 7 / 8; 1° step with
+//! the diverging half cavitated 7 / 7 / 8; a 1° step at its converged cavity 7 / 8 / 9; the
 //! steady film at its converged cavity 7 / 9 / 12 (×1.7, the known limit: the slow mode sits on the full nodes of the reformation front next to the
 //! groove, where a cavitated row outside the coarse space fixes the pressure of its full
 //! neighbour). Inside the inverse solver (inverse_timing, Krylov iterations per film step,
@@ -153,22 +153,19 @@
 //! Press 2001 (semi-coarsening with line relaxation, Galerkin coarsening); Y. Saad, "A flexible
 //! inner-outer preconditioned GMRES algorithm", SIAM J. Sci. Comput. 14 (1993) 461–469.
 
-use faer::prelude::*;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-
 use super::ReynoldsError;
 use super::discretization::Stencil;
 use super::grid::{Grid, NodeKind};
+use crate::banded::BandedLu;
 use crate::tridiagonal::{InterleavedFactors, Real};
 
 /// The precision of the V-cycle's vectors, operators and line substitutions (module docs,
 /// "Precision"). The hierarchy is built in `f64` and rounded to it.
 pub(crate) type Work = f32;
 
-/// Coarsening stops at the first level with n_θ ≤ this; that level is solved by sparse LU
-/// (n_θ · n_z ≤ 8 · n_z unknowns: 8 × 31 on the default grid).
-pub(crate) const COARSEST_THETA: usize = 8;
+/// Coarsening stops at the first level with n_θ ≤ this; that level is solved by banded LU
+/// (n_θ · n_z ≤ 4 · n_z unknowns: 4 × 31 on the default grid; bandwidth 2 n_θ − 1 ≤ 7).
+pub(crate) const COARSEST_THETA: usize = 4;
 
 /// The largest change of a frozen matrix, per row and relative to that row of the matrix the
 /// hierarchy was built for (Σ_l |Δa_kl| / Σ_l |a_kl|: a cavitated row next to full nodes has a
@@ -774,8 +771,7 @@ impl MgLevel {
 }
 
 /// The multigrid hierarchy of one frozen system (rebuilt by [`Multigrid::setup`]). The level
-/// vectors are reused; a setup allocates the line-factor staging and the coarsest sparse LU,
-/// and each coarsest solve its right-hand side column (n_θ ≤ 8 lines: small).
+/// vectors, the line-factor staging and the coarsest banded LU's storage are reused.
 #[derive(Default)]
 pub(crate) struct Multigrid {
     levels: Vec<MgLevel>,
@@ -814,99 +810,78 @@ fn fine_mask(grid: &Grid, switch: Option<&[f64]>, k: usize) -> f64 {
     }
 }
 
-/// The coarsest level's sparse LU with its symbolic analysis kept. The nonzero pattern of the
-/// coarsest operator changes only with its coarse space (the mask: where the film is full), so
-/// the column ordering and elimination structure of the last pattern are kept and a rebuild
-/// with the same pattern refactors the values only (faer's `Lu::try_new_with_symbolic`). A
-/// fixed pattern with every nine-point entry, zero or not, would never need a new analysis,
-/// but its fill made each coarsest solve dearer (compressor-size cycle: +1.3 % instructions).
+/// The coarsest level's direct solve: a banded LU with partial pivoting
+/// ([`crate::banded::BandedLu`]) of the nine-point operator with its unknowns numbered z outer,
+/// θ inner (k' = j n_θ + i):
+///
+/// ```text
+///   j+1:   ○ ○ ○ ○ ○ ○ ○ ○        (i, j) couples to (i±1 mod n_θ, j) and (i±1 mod n_θ, j±1):
+///   j  :   ● ○ ○ ○ ○ ○ ○ ●         |k'(row) − k'(col)| ≤ n_θ + (n_θ − 1) = 2 n_θ − 1
+///   j−1:   ○ ○ ○ ○ ○ ○ ○ ○        (the periodic wrap i = 0 ↔ n_θ − 1 is n_θ − 1 apart)
+/// ```
+///
+/// so kl = ku = 2 n_θ − 1 ≤ 7 (n_θ ≤ [`COARSEST_THETA`]) whatever n_z is: about
+/// 2 n · 7 · 14 flops to factor (n = n_θ n_z, 124 on the default grid) and 2 n · 21 per solve.
+/// It replaced faer's sparse LU of an 8 × n_z coarsest level, whose symbolic analysis had to
+/// be redone whenever the coarse space (the full-film mask) changed the nonzero pattern.
+/// Measured (callgrind, compressor-size inverse cycle of the timing report, 120 × 31, 1°;
+/// and the warm-step bench): with n_θ ≤ 8 the banded LU (band 15, filled where the sparse LU
+/// skipped the cavity's identity rows) was dearer than the sparse one — +1.8 % instructions of
+/// the cycle, its solves 3× the sparse solves; one level more, down to n_θ ≤ 4, makes the band
+/// 7 and the factor and solve together < 1.5 % of the cycle: −1.0 % instructions of the cycle
+/// (Krylov iterations per film step unchanged), −2.2 % of the warm step (whose coarsest
+/// factor had been 11 % of its instructions).
 #[derive(Default)]
 struct CoarsestLu {
-    /// The pattern of the last analysis and its symbolic LU.
-    symbolic: Option<(SymbolicSparseColMat<usize>, SymbolicLu<usize>)>,
-    /// Scratch of the pattern being assembled: column pointers, row indices, values.
-    col_ptr: Vec<usize>,
-    row_idx: Vec<usize>,
-    values: Vec<f64>,
-    lu: Option<Lu<usize, f64>>,
-    /// The right-hand side and solution of a coarsest solve (in place).
+    lu: BandedLu,
+    /// The right-hand side and solution of a coarsest solve (in place, z-outer order).
     rhs: Vec<f64>,
 }
 
 impl CoarsestLu {
-    /// Factor the nine-point level `a`: its nonzeros column by column (the row k of column
-    /// (i, j) through offset (dθ, dz) is (i − dθ, j − dz), holding c[(dθ, dz)][k]), a symbolic
-    /// analysis when the pattern differs from the last one, the numeric LU with partial
-    /// pivoting.
+    /// Forget the factorization (a setup under way).
+    fn clear(&mut self) {
+        self.lu.reset(0, 0, 0);
+    }
+
+    /// Whether a factorization is in hand.
+    fn is_ready(&self) -> bool {
+        self.lu.is_factored() && !self.lu.is_empty()
+    }
+
+    /// Factor the nine-point level `a` (row k = i n_z + j holds c[(dθ, dz)][k] for the node
+    /// (i + dθ mod n_θ, j + dz)); two offsets that meet in one entry when n_θ ≤ 2 are summed.
     fn factor(&mut self, a: &Stencil9) -> Result<(), ReynoldsError> {
-        self.lu = None;
         let (nt, nz) = (a.nt, a.nz);
         let n = nt * nz;
-        self.col_ptr.clear();
-        self.row_idx.clear();
-        self.values.clear();
-        self.col_ptr.push(0);
-        let mut column: Vec<(usize, f64)> = Vec::with_capacity(9);
-        for ic in 0..nt {
-            for jc in 0..nz {
-                column.clear();
+        let band = (2 * nt - 1).min(n - 1);
+        self.lu.reset(n, band, band);
+        let band_error = |e: crate::banded::BandedError| ReynoldsError::LinearSolve {
+            solver: "multigrid coarsest level",
+            detail: format!("{e} ({nt} × {nz} coarsest level)"),
+        };
+        for i in 0..nt {
+            for j in 0..nz {
+                let k = i * nz + j;
+                let row = j * nt + i;
                 for di in -1isize..=1 {
-                    let i = wrap(ic, -di, nt);
+                    let ic = wrap(i, di, nt);
                     for dj in -1isize..=1 {
-                        let j = jc as isize - dj;
-                        if j < 0 || j >= nz as isize {
+                        let jc = j as isize + dj;
+                        if jc < 0 || jc >= nz as isize {
                             continue;
                         }
-                        let k = i * nz + j as usize;
                         let v = a.c[at(di, dj)][k];
-                        if v == 0.0 {
-                            continue;
-                        }
-                        // Two offsets meet in one entry when n_θ ≤ 2: summed.
-                        match column.iter_mut().find(|(row, _)| *row == k) {
-                            Some((_, sum)) => *sum += v,
-                            None => column.push((k, v)),
+                        if v != 0.0 {
+                            self.lu
+                                .add(row, jc as usize * nt + ic, v)
+                                .map_err(band_error)?;
                         }
                     }
                 }
-                column.sort_unstable_by_key(|&(row, _)| row);
-                for &(row, v) in &column {
-                    self.row_idx.push(row);
-                    self.values.push(v);
-                }
-                self.col_ptr.push(self.row_idx.len());
             }
         }
-        let same = self.symbolic.as_ref().is_some_and(|(pattern, _)| {
-            pattern.nrows() == n
-                && pattern.col_ptr() == self.col_ptr.as_slice()
-                && pattern.row_idx() == self.row_idx.as_slice()
-        });
-        if !same {
-            let pattern = SymbolicSparseColMat::new_checked(
-                n,
-                n,
-                self.col_ptr.clone(),
-                None,
-                self.row_idx.clone(),
-            );
-            let symbolic =
-                SymbolicLu::try_new(pattern.as_ref()).map_err(|e| ReynoldsError::LinearSolve {
-                    solver: "multigrid coarsest level",
-                    detail: format!("symbolic LU failed ({nt} × {nz}): {e:?}"),
-                })?;
-            self.symbolic = Some((pattern, symbolic));
-        }
-        let (pattern, symbolic) = self.symbolic.as_ref().expect("set above");
-        let matrix = SparseColMatRef::new(pattern.as_ref(), &self.values);
-        let lu = Lu::try_new_with_symbolic(symbolic.clone(), matrix).map_err(|e| {
-            ReynoldsError::LinearSolve {
-                solver: "multigrid coarsest level",
-                detail: format!("sparse LU failed ({nt} × {nz}): {e:?}"),
-            }
-        })?;
-        self.lu = Some(lu);
-        Ok(())
+        self.lu.factor().map_err(band_error)
     }
 }
 
@@ -956,7 +931,8 @@ impl Multigrid {
         st: &Stencil,
         switch: Option<&[f64]>,
     ) -> Option<Vec<bool>> {
-        let (Some(fine), Some(_)) = (self.levels.first(), self.coarsest.lu.as_ref()) else {
+        let (Some(fine), Some(_)) = (self.levels.first(), self.coarsest.is_ready().then_some(()))
+        else {
             return None;
         };
         let a = &fine.a;
@@ -998,7 +974,7 @@ impl Multigrid {
         columns: &[bool],
     ) -> Result<(), ReynoldsError> {
         // An update that fails half way must not look like a finished hierarchy to `fit`.
-        self.coarsest.lu = None;
+        self.coarsest.clear();
         let (nt, nz) = (grid.n_theta, grid.n_z);
         let depth = self.levels.len();
         let mut rows = Vec::new();
@@ -1070,7 +1046,7 @@ impl Multigrid {
         switch: Option<&[f64]>,
     ) -> Result<(), ReynoldsError> {
         // A rebuild that fails half way must not look like a finished one to `fit`.
-        self.coarsest.lu = None;
+        self.coarsest.clear();
         let mut depth = 1;
         let mut nt = grid.n_theta;
         while nt > COARSEST_THETA {
@@ -1111,7 +1087,8 @@ impl Multigrid {
     /// orders of magnitude between the β-sized pressure flux and the Couette transport, and the
     /// coarse space with it), or the film moved too far.
     fn fit(&self, grid: &Grid, st: &Stencil, switch: Option<&[f64]>) -> Hierarchy {
-        let (Some(fine), Some(_)) = (self.levels.first(), self.coarsest.lu.as_ref()) else {
+        let (Some(fine), Some(_)) = (self.levels.first(), self.coarsest.is_ready().then_some(()))
+        else {
             return Hierarchy::Built;
         };
         let a = &fine.a;
@@ -1239,30 +1216,38 @@ impl Multigrid {
 
     fn solve_coarsest(&mut self) -> Result<(), ReynoldsError> {
         let last = self.levels.last_mut().expect("at least one level");
-        let lu = self
-            .coarsest
-            .lu
-            .as_ref()
-            .ok_or(ReynoldsError::LinearSolve {
+        let coarsest = &mut self.coarsest;
+        if !coarsest.is_ready() {
+            return Err(ReynoldsError::LinearSolve {
                 solver: "multigrid coarsest level",
                 detail: "no factorization (setup failed or not run)".into(),
-            })?;
-        let n = last.b.len();
-        let rhs = &mut self.coarsest.rhs;
+            });
+        }
+        let (nt, nz) = (last.a.nt, last.a.nz);
+        let n = nt * nz;
+        // Level order k = i n_z + j → the factorization's z-outer order j n_θ + i and back.
+        let rhs = &mut coarsest.rhs;
         rhs.clear();
-        rhs.extend(last.b.iter().map(|v| v.to_f64()));
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(rhs, n, 1));
-        for k in 0..n {
-            let v = Work::from_f64(rhs[k]);
-            if !v.is_finite() {
-                return Err(ReynoldsError::NonFinite {
-                    what: "multigrid coarsest-level solution",
-                    theta_index: k / last.a.nz,
-                    z_index: k % last.a.nz,
-                    iteration: 0,
-                });
+        rhs.resize(n, 0.0);
+        for i in 0..nt {
+            for j in 0..nz {
+                rhs[j * nt + i] = last.b[i * nz + j].to_f64();
             }
-            last.x[k] = v;
+        }
+        coarsest.lu.solve_in_place(rhs);
+        for i in 0..nt {
+            for j in 0..nz {
+                let v = Work::from_f64(rhs[j * nt + i]);
+                if !v.is_finite() {
+                    return Err(ReynoldsError::NonFinite {
+                        what: "multigrid coarsest-level solution",
+                        theta_index: i,
+                        z_index: j,
+                        iteration: 0,
+                    });
+                }
+                last.x[i * nz + j] = v;
+            }
         }
         Ok(())
     }
