@@ -1191,10 +1191,30 @@ impl ReynoldsSolver {
     /// derivative of the piece the answer lies on — what finite differences across a switching
     /// film cannot give.
     pub fn film_force_jacobian(&mut self) -> Result<[[f64; 2]; 2], ReynoldsError> {
-        let responses = self.thickness_responses(&[
-            ThicknessChange::Eccentricity(0),
-            ThicknessChange::Eccentricity(1),
-        ])?;
+        self.film_force_jacobian_to(JACOBIAN_TOLERANCE)
+    }
+
+    /// [`Self::film_force_jacobian`] with its two linear solves to `relative_tolerance` of
+    /// their largest right-hand side (or the film's `tolerance`, if looser) instead of 1e-5:
+    /// for a Newton iteration that needs fewer digits of its Jacobian (the inverse and
+    /// slider-crank Newtons on ε take 1e-2, [`crate::inverse::ReynoldsFilm`]). The error in
+    /// ∂F/∂ε is of the order of `relative_tolerance` times its size; `relative_tolerance` must
+    /// lie in (0, 1).
+    pub fn film_force_jacobian_to(
+        &mut self,
+        relative_tolerance: f64,
+    ) -> Result<[[f64; 2]; 2], ReynoldsError> {
+        if !(relative_tolerance > 0.0 && relative_tolerance < 1.0) {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "film_force_jacobian_to: relative_tolerance",
+                value: relative_tolerance,
+                reason: "the linear solves' relative tolerance lies in (0, 1)",
+            });
+        }
+        let responses = self.responses_to(
+            &[ThicknessChange::Eccentricity(0), ThicknessChange::Eccentricity(1)],
+            relative_tolerance,
+        )?;
         let mut jacobian = [[0.0; 2]; 2];
         for (c, r) in responses.iter().enumerate() {
             jacobian[0][c] = r.film_force[0];
@@ -1218,6 +1238,15 @@ impl ReynoldsSolver {
     pub fn thickness_responses(
         &mut self,
         changes: &[ThicknessChange],
+    ) -> Result<Vec<ThicknessResponse>, ReynoldsError> {
+        self.responses_to(changes, JACOBIAN_TOLERANCE)
+    }
+
+    /// [`Self::thickness_responses`] with its linear solves to `relative_tolerance`.
+    fn responses_to(
+        &mut self,
+        changes: &[ThicknessChange],
+        relative_tolerance: f64,
     ) -> Result<Vec<ThicknessResponse>, ReynoldsError> {
         let lin = self.last.clone().ok_or(ReynoldsError::Unsupported {
             what: "film_force_jacobian: no film has been solved yet",
@@ -1264,7 +1293,7 @@ impl ReynoldsSolver {
                 &zeros,
                 &mut d_res,
             );
-            let x = self.solve_response(change, &lin)?;
+            let x = self.solve_response(change, &lin, relative_tolerance)?;
             let (force, dp) = self.reduce_response(&lin.g, &x);
             if let ThicknessChange::Eccentricity(c) = change {
                 self.sensitivity[*c] = x;
@@ -1339,11 +1368,13 @@ impl ReynoldsSolver {
     }
 
     /// Stage of [`Self::thickness_responses`]: solves A(g) δψ = −∂R/∂h · δh (assembled by
-    /// [`Self::assemble_response`]) to 1e-5 of its largest right-hand side, from zero.
+    /// [`Self::assemble_response`]) to `relative_tolerance` (1e-5 for the public responses) of
+    /// its largest right-hand side, from zero.
     fn solve_response(
         &mut self,
         change: &ThicknessChange,
         lin: &Linearization,
+        relative_tolerance: f64,
     ) -> Result<Vec<f64>, ReynoldsError> {
         let p = &self.params;
         let mut x = match change {
@@ -1359,7 +1390,7 @@ impl ReynoldsSolver {
                     &self.grid,
                     &self.stencil,
                     &mut x,
-                    JACOBIAN_TOLERANCE.max(p.tolerance),
+                    relative_tolerance.max(p.tolerance),
                     None,
                     p.max_linear_iterations,
                     pc,

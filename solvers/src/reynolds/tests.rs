@@ -1176,3 +1176,45 @@ proptest::proptest! {
         proptest::prop_assert!(!flipped || old.p != full.p || old.w != full.w || old.e != full.e);
     }
 }
+
+/// The Newton iterations' Jacobian ([`ReynoldsSolver::film_force_jacobian_to`] 1e-2, linear
+/// solves to 1e-2 of their right-hand side with the default multigrid-Krylov solver) against
+/// the public one (1e-5) on a cavitating BDF2 step of the grooved film: the two digits a
+/// Newton step on ε needs to gain two digits per step (\[Kelley1995\] §5.4). A tolerance outside
+/// (0, 1) is an error naming it.
+#[test]
+fn newton_jacobian_keeps_two_digits() {
+    let jac_norm = |m: [[f64; 2]; 2]| m.iter().flatten().map(|v| v * v).sum::<f64>().sqrt();
+    let mut p = grooved(LinearSolver::MultigridKrylov);
+    p.grid = GridParams {
+        n_theta: 120,
+        n_z: 31,
+    };
+    let mut s = ReynoldsSolver::new(p).unwrap();
+    let c = conditions(2e5);
+    let mut state = s.initial_state([0.5, 0.2]);
+    for e in [[0.51, 0.21], [0.52, 0.22], [0.53, 0.23]] {
+        let input = StepInput {
+            eccentricity_ratio: e,
+            dt: 1e-4,
+            conditions: c.clone(),
+        };
+        state = s.solve_step(&state, &input).unwrap().1;
+    }
+    let _ = state;
+    let loose = s.film_force_jacobian_to(1e-2).unwrap();
+    let tight = s.film_force_jacobian().unwrap();
+    let d = jac_norm([
+        [loose[0][0] - tight[0][0], loose[0][1] - tight[0][1]],
+        [loose[1][0] - tight[1][0], loose[1][1] - tight[1][1]],
+    ]);
+    assert!(d <= 1e-2 * jac_norm(tight), "{loose:?} vs {tight:?}");
+    for bad in [0.0, 1.0, -1e-3, f64::NAN] {
+        match s.film_force_jacobian_to(bad) {
+            Err(ReynoldsError::InvalidParameter { name, .. }) => {
+                assert!(name.contains("relative_tolerance"), "{name}")
+            }
+            other => panic!("tolerance {bad}: {other:?}"),
+        }
+    }
+}
