@@ -1212,7 +1212,10 @@ impl ReynoldsSolver {
             });
         }
         let responses = self.responses_to(
-            &[ThicknessChange::Eccentricity(0), ThicknessChange::Eccentricity(1)],
+            &[
+                ThicknessChange::Eccentricity(0),
+                ThicknessChange::Eccentricity(1),
+            ],
             relative_tolerance,
         )?;
         let mut jacobian = [[0.0; 2]; 2];
