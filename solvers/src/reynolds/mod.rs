@@ -2242,7 +2242,9 @@ const STEADY_SHIFT: f64 = 0.01;
 /// slider-crank with the Reynolds film (two turns, 120 × 31, where every BDF2 step refreshes
 /// the Jacobian): 3530 film solves for 1358 steps at 1e-7, 1e-5, 1e-4 and 1e-3 alike, the same
 /// orbit and forces to the printed digit; Krylov iterations per Jacobian solve 6.2 at 1e-7,
-/// 5.0 at 1e-5.
+/// 5.0 at 1e-5. This is the public Jacobian's and the thickness responses' (the elastic
+/// coupling's); the inverse and slider-crank Newtons ask for 1e-2 through
+/// [`ReynoldsSolver::film_force_jacobian_to`] (`inverse::ReynoldsFilm`, measured there).
 const JACOBIAN_TOLERANCE: f64 = 1e-5;
 
 /// Block pivots allowed without lowering the number of infeasible nodes before a single

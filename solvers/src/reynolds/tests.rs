@@ -1201,7 +1201,6 @@ fn newton_jacobian_keeps_two_digits() {
         };
         state = s.solve_step(&state, &input).unwrap().1;
     }
-    let _ = state;
     let loose = s.film_force_jacobian_to(1e-2).unwrap();
     let tight = s.film_force_jacobian().unwrap();
     let d = jac_norm([
