@@ -634,8 +634,12 @@ fn krylov_iterations_do_not_grow_with_the_grid() {
 /// count still grows — steady film 7 / 9 / 12 from 60 × 15 to 240 × 61 (×1.7), a 1° time
 /// step 7 / 8 / 9 (×1.29) — against ~4× for the ADI preconditioner. The slow mode sits on the
 /// full-film nodes of the reformation front next to the groove, where a cavitated row (outside
-/// the coarse space) fixes the pressure of its full neighbour. The test keeps the measured
-/// bounds with a margin (steady ≤ 2×, step ≤ 1.5×) so that a regression shows.
+/// the coarse space) fixes the pressure of its full neighbour. Measured and dropped
+/// (2026-11-28): those pinned full nodes masked out of the coarse space too (the full nodes
+/// with a cavitated θ-neighbour, or a cavitated θ- or z-neighbour): steady 8 / 10 / 13, this
+/// step 8 / 10 / 13 and the cavitated step of the test above 7 / 8 / 10 — the coarse space
+/// needs them. The test keeps the measured bounds with a margin (steady ≤ 2×, step ≤ 1.5×) so
+/// that a regression shows.
 #[test]
 fn real_cavity_iteration_growth_is_bounded() {
     let grids = [(60, 15), (120, 31), (240, 61)];
