@@ -642,8 +642,8 @@ fn krylov_iterations_do_not_grow_with_the_grid() {
 /// sweep on the finest level (pre and post) steady 6 / 8 / 11, step 7 / 7 / 9; two zebra
 /// sweeps (V(2,2)) 6 / 7 / 9 and 6 / 6 / 7; both 6 / 6 / 8 and 5 / 6 / 7; a circumferential
 /// sweep after the pre-smoothing's zebra lines too 6 / 7 / 10 and 6 / 7 / 8 — each at 20–60 %
-/// more work per V-cycle. The test keeps the measured bounds with a margin (steady ≤ 2×, step ≤ 1.5×) so
-/// that a regression shows.
+/// more work per V-cycle. The test keeps the measured bounds with a margin (steady ≤ 2×,
+/// step ≤ 1.5×) so that a regression shows.
 #[test]
 fn real_cavity_iteration_growth_is_bounded() {
     let grids = [(60, 15), (120, 31), (240, 61)];
