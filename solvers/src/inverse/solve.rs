@@ -1176,6 +1176,7 @@ impl Stepper<'_> {
             cond: &cond,
             w,
             at: leg.at,
+            may_split: depth < self.params.max_step_splits,
         };
         match self.newton(film, state, leg.guess, target) {
             Err(InverseError::NewtonFailed { .. }) if depth < self.params.max_step_splits => {
@@ -1457,10 +1458,11 @@ impl Stepper<'_> {
         cur.accepted(iterations)
     }
 
-    /// Newton could not reach `tolerance`: the best point is accepted as a stall if within
-    /// `accept_tolerance`, else the step fails. (|ε| below the collapse limit was checked at
-    /// the top of the iteration that produced it.) A stall is kept for the observer
-    /// ([`InverseObserver::on_stall`]) with the film's diagnostics of its last step.
+    /// Newton could not reach `tolerance`: the step fails if it can still be split
+    /// ([`Target::may_split`]: two half steps come before a stall) or its residual exceeds
+    /// `accept_tolerance`; else the best point is accepted as a stall. (|ε| below the collapse
+    /// limit was checked at the top of the iteration that produced it.) A stall is kept for the
+    /// observer ([`InverseObserver::on_stall`]) with the film's diagnostics of its last step.
     fn give_up<F: FilmModel + ?Sized>(
         &mut self,
         problem: &StepProblem<'_, F::State>,
@@ -1470,7 +1472,7 @@ impl Stepper<'_> {
     ) -> Result<Accepted<F::State>, InverseError> {
         let params = self.params;
         self.stats.newton += iterations;
-        if cur.res > params.accept_tolerance {
+        if problem.target.may_split || cur.res > params.accept_tolerance {
             return Err(problem
                 .target
                 .at
@@ -1508,6 +1510,10 @@ struct Target<'c> {
     cond: &'c OperatingConditions,
     w: [f64; 2],
     at: Where,
+    /// A failed Newton is retried as two half steps ([`Stepper::advance`]): a stall is then
+    /// not accepted but reported as [`InverseError::NewtonFailed`], so that splitting comes
+    /// first and the stall is the last resort, at the deepest split.
+    may_split: bool,
 }
 
 /// What stays fixed during one step's Newton: the film state the step starts from, its
@@ -1550,7 +1556,9 @@ impl<S> StepProblem<'_, S> {
         eps: [f64; 2],
         stats: &mut Stats,
     ) -> Result<Iterate<S>, InverseError> {
-        let Target { dt, cond, w, at } = self.target;
+        let Target {
+            dt, cond, w, at, ..
+        } = self.target;
         stats.evaluations += 1;
         let (response, state) = film
             .step(self.state, eps, dt, cond)
@@ -1990,6 +1998,72 @@ mod tests {
             }
             Ok((toy_response(f, e), e))
         }
+    }
+
+    /// A stiffening spring, F = −k (1 + b |ε|²) ε: no damping, so each step is the static
+    /// root of k (1 + b |ε|²) ε = W(t), which Newton reaches quadratically from the predictor.
+    struct Stiffening {
+        k: f64,
+        b: f64,
+    }
+
+    impl FilmModel for Stiffening {
+        type State = [f64; 2];
+        fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
+            e
+        }
+        fn step(
+            &mut self,
+            _s: &[f64; 2],
+            e: [f64; 2],
+            _dt: f64,
+            _c: &OperatingConditions,
+        ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
+            let g = -self.k * (1.0 + self.b * (e[0] * e[0] + e[1] * e[1]));
+            Ok((toy_response([g * e[0], g * e[1]], e), e))
+        }
+    }
+
+    #[test]
+    fn a_stalling_step_is_split_before_a_stall_is_accepted() {
+        // Three Newton iterations per step: from the predictor of a 45° step the residual stays
+        // above the 1e-10 tolerance (below the 1e-2 accept_tolerance), from the closer
+        // predictor of a split step it does not. A stall is the last resort: with splitting
+        // available none is accepted; with splitting off the same steps are stalls, reported.
+        let load = OperatingHistory {
+            load: FnLoad {
+                period: 1.0,
+                load: |t: f64| [-60.0 * (TAU * t).sin(), 0.0],
+            },
+            journal_speed: 1.0,
+            bearing_speed: 0.0,
+            feed_pressures: vec![],
+        };
+        let params = InverseParams {
+            step_deg: 45.0,
+            tolerance: 1e-10,
+            jacobian: JacobianMethod::FiniteDifference,
+            max_newton_iterations: 3,
+            max_cycles: 2,
+            ..Default::default()
+        };
+        let (k, b) = (100.0, 2.0);
+        let sol = solve_inverse(&params, &load, &mut Stiffening { k, b }, &mut NoObserver).unwrap();
+        assert_eq!(sol.info.stalled_steps, 0);
+        assert!(sol.info.split_steps > 0);
+        for st in &sol.steps {
+            let e = st.eccentricity_ratio[0];
+            let want = -0.6 * (TAU * st.time).sin();
+            assert!((e * (1.0 + b * e * e) - want).abs() < 1e-9, "{st:?}");
+        }
+        let unsplit = InverseParams {
+            max_step_splits: 0,
+            ..params
+        };
+        let sol =
+            solve_inverse(&unsplit, &load, &mut Stiffening { k, b }, &mut NoObserver).unwrap();
+        assert!(sol.info.stalled_steps > 0);
+        assert!(sol.info.max_stalled_residual <= unsplit.accept_tolerance);
     }
 
     #[test]

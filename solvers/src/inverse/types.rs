@@ -41,13 +41,14 @@ pub struct InverseParams {
     pub jacobian: JacobianMethod,
     /// Difference step in ε for the Jacobian (default 1e-6).
     pub fd_step: f64,
-    /// A step whose Newton stalls — a fresh difference Jacobian gives no descent even after
-    /// halving, or the iteration limit is reached — is accepted at its best point if the
-    /// residual is ≤ `accept_tolerance` (default 1e-2), and counted in
-    /// [`InverseInfo::stalled_steps`]; above it the step fails. Why: the discretised JFO film
-    /// force is piecewise smooth in ε — it jumps by a fraction of a per cent of the load (coarse
-    /// grids) when a node switches between full and cavitated — so `tolerance` may be
-    /// unreachable exactly at a switch. Set it equal to `tolerance` for a strict run.
+    /// A step whose Newton stalls — a fresh Jacobian gives no descent even after halving, or
+    /// the iteration limit is reached — is first retried as two half steps
+    /// (`max_step_splits`); only where it can be split no further is it accepted at its best
+    /// point if the residual is ≤ `accept_tolerance` (default 1e-2), and counted in
+    /// [`InverseInfo::stalled_steps`]; above it the step fails. Why: a fallback, reported, for
+    /// a film force that Newton cannot resolve at the shortest step (the difference and secant
+    /// Jacobians across a switching film; the exact Jacobian's film is continuous but only
+    /// piecewise smooth in ε). Set it equal to `tolerance` for a strict run.
     pub accept_tolerance: f64,
     /// Newton iterations allowed per time step (default 40).
     pub max_newton_iterations: usize,
