@@ -44,8 +44,15 @@
 //! tolerance (chord steps); it is taken afresh at the current iterate otherwise
 //! (docs/conventions.md §4: finite differences across a switching film are meaningless). The discrete
 //! JFO film of the second generation is continuous in ε (`crate::reynolds`, module docs), so
-//! Newton converges to the tolerance on every step of the validation and compressor cases;
-//! a step that still cannot (iteration limit, or no descent on a fresh Jacobian) is taken as
+//! Newton converges to the tolerance on every step of the validation and compressor cases.
+//! Where the fresh Jacobian at an iterate is singular, Newton starts once more from the step's
+//! start ε: a predictor that extrapolates the journal away from the wall faster than the film
+//! can follow puts the guess where the squeeze suction cavitates the whole film (F = 0 and
+//! ∂F/∂ε = 0 all around it, so a split step, which keeps the speed, lands there again), and
+//! from zero speed the line search only moves downhill. (Found 2026-11-28: the compressor rod
+//! bearing at 4° steps failed in its third cycle in the step to 88° crank ("residual 1.000e0
+//! after 1 iterations", its first substep's guess in that region); with the restart it runs, h_min 3.829 µm against 3.835 µm at the case's 2°.)
+//! A step that still cannot (iteration limit, or no descent on a fresh Jacobian) is taken as
 //! two half steps, recursively up to `max_step_splits` halvings, and only at the deepest split
 //! accepted at its best point if |r|/max(|W|, W_ref) ≤ `accept_tolerance` (default 1e-2),
 //! counted in [`InverseInfo::stalled_steps`] and reported; above that it is an error. (Until

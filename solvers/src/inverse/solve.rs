@@ -1177,6 +1177,7 @@ impl Stepper<'_> {
             w,
             at: leg.at,
             may_split: depth < self.params.max_step_splits,
+            start: leg.eps,
         };
         match self.newton(film, state, leg.guess, target) {
             Err(InverseError::NewtonFailed { .. }) if depth < self.params.max_step_splits => {
@@ -1275,6 +1276,8 @@ impl Stepper<'_> {
         // After a stall on a fresh Jacobian, one retry with a secant over a 100× wider difference
         // step (≥ 1e-3): it averages over the small force jumps of a switching JFO film.
         let mut wide_tried = false;
+        // Newton restarted once from the step's start after a singular fresh Jacobian.
+        let mut restarted = false;
         let mut fd_h = params.fd_step;
         loop {
             let converged = cur.res <= params.tolerance;
@@ -1302,6 +1305,24 @@ impl Stepper<'_> {
                 fresh = true;
             }
             let Some(delta) = self.newton_direction(&cur) else {
+                if fresh && !restarted && cur.eps != target.start {
+                    // A singular fresh Jacobian: the iterate lies where the film force does
+                    // not move with ε — typically a guess extrapolated so fast away from the
+                    // wall that the squeeze suction cavitates the whole film (F = 0 and
+                    // ∂F/∂ε = 0 around it; splitting the step keeps the speed and the flat
+                    // region). Newton starts once more from where the step starts (no squeeze
+                    // velocity), from which its line search only moves downhill.
+                    restarted = true;
+                    if relax {
+                        film.relax_next_step(relaxed(1.0));
+                    }
+                    cur = problem.evaluate(film, target.start, &mut self.stats)?;
+                    loose = film.last_step_relaxed();
+                    last_solved = target.start;
+                    self.jac.valid = false;
+                    fresh = false;
+                    continue;
+                }
                 if fresh {
                     return Err(target.at.newton_failed(iterations, cur.res, cur.eps));
                 }
@@ -1514,6 +1535,9 @@ struct Target<'c> {
     /// not accepted but reported as [`InverseError::NewtonFailed`], so that splitting comes
     /// first and the stall is the last resort, at the deepest split.
     may_split: bool,
+    /// ε at the start of the step: Newton's second start where the fresh Jacobian at an
+    /// iterate is singular ([`Stepper::newton`]).
+    start: [f64; 2],
 }
 
 /// What stays fixed during one step's Newton: the film state the step starts from, its
@@ -2064,6 +2088,78 @@ mod tests {
             solve_inverse(&unsplit, &load, &mut Stiffening { k, b }, &mut NoObserver).unwrap();
         assert!(sol.info.stalled_steps > 0);
         assert!(sol.info.max_stalled_residual <= unsplit.accept_tolerance);
+    }
+
+    /// A spring–damper film (F = −k ε − d ε̇, backward Euler) that carries nothing above the
+    /// speed `v_max` (F = 0 and ∂F/∂ε = 0 there): the stand-in for a JFO film whose whole
+    /// film the squeeze suction of a journal leaving the wall fast cavitates.
+    struct FlatWhenFast {
+        k: f64,
+        d: f64,
+        v_max: f64,
+    }
+
+    impl FilmModel for FlatWhenFast {
+        type State = [f64; 2];
+        fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
+            e
+        }
+        fn step(
+            &mut self,
+            s: &[f64; 2],
+            e: [f64; 2],
+            dt: f64,
+            _c: &OperatingConditions,
+        ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
+            let v = [(e[0] - s[0]) / dt, (e[1] - s[1]) / dt];
+            let f = if norm(v) > self.v_max {
+                [0.0; 2]
+            } else {
+                [
+                    -self.k * e[0] - self.d * v[0],
+                    -self.k * e[1] - self.d * v[1],
+                ]
+            };
+            Ok((toy_response(f, e), e))
+        }
+    }
+
+    #[test]
+    fn a_guess_where_the_film_carries_nothing_restarts_from_the_step_start() {
+        // 45° steps: the predictor's guess overshoots the orbit's speed (≤ 3.2 per unit time
+        // here) near its turning points, into the region above v_max = 3.5 where the film
+        // force and its Jacobian vanish. Without splits, Newton must restart from the step's
+        // start ε (zero speed) and reach the root there.
+        let load = OperatingHistory {
+            load: FnLoad {
+                period: 1.0,
+                load: |t: f64| [-60.0 * (TAU * t).sin(), 0.0],
+            },
+            journal_speed: 1.0,
+            bearing_speed: 0.0,
+            feed_pressures: vec![],
+        };
+        let params = InverseParams {
+            step_deg: 45.0,
+            tolerance: 1e-10,
+            jacobian: JacobianMethod::FiniteDifference,
+            max_step_splits: 0,
+            max_cycles: 2,
+            ..Default::default()
+        };
+        let (k, d) = (100.0, 10.0);
+        let mut film = FlatWhenFast { k, d, v_max: 3.5 };
+        let sol = solve_inverse(&params, &load, &mut film, &mut NoObserver).unwrap();
+        assert_eq!(sol.info.stalled_steps, 0);
+        let dt = 1.0 / 8.0;
+        for pair in sol.steps.windows(2) {
+            let (a, b) = (&pair[0], &pair[1]);
+            let e = b.eccentricity_ratio[0];
+            let v = (e - a.eccentricity_ratio[0]) / dt;
+            let want = -60.0 * (TAU * b.time).sin();
+            assert!(v.abs() <= 3.5, "{b:?}");
+            assert!((k * e + d * v - want).abs() < 1e-7, "{b:?}");
+        }
     }
 
     #[test]
