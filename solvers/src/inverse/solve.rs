@@ -2024,6 +2024,22 @@ mod tests {
         }
     }
 
+    type SineLoad = OperatingHistory<FnLoad<fn(f64) -> [f64; 2]>>;
+
+    /// W(t) = (−60 sin 2πt, 0) N, period 1 s, unit journal speed: the load of the toy films'
+    /// step tests below (their equilibria swing through ±0.6 of the clearance at k = 100).
+    fn sine_load() -> SineLoad {
+        OperatingHistory {
+            load: FnLoad {
+                period: 1.0,
+                load: |t: f64| [-60.0 * (TAU * t).sin(), 0.0],
+            },
+            journal_speed: 1.0,
+            bearing_speed: 0.0,
+            feed_pressures: vec![],
+        }
+    }
+
     /// A stiffening spring, F = −k (1 + b |ε|²) ε: no damping, so each step is the static
     /// root of k (1 + b |ε|²) ε = W(t), which Newton reaches quadratically from the predictor.
     struct Stiffening {
@@ -2054,15 +2070,7 @@ mod tests {
         // above the 1e-10 tolerance (below the 1e-2 accept_tolerance), from the closer
         // predictor of a split step it does not. A stall is the last resort: with splitting
         // available none is accepted; with splitting off the same steps are stalls, reported.
-        let load = OperatingHistory {
-            load: FnLoad {
-                period: 1.0,
-                load: |t: f64| [-60.0 * (TAU * t).sin(), 0.0],
-            },
-            journal_speed: 1.0,
-            bearing_speed: 0.0,
-            feed_pressures: vec![],
-        };
+        let load = sine_load();
         let params = InverseParams {
             step_deg: 45.0,
             tolerance: 1e-10,
@@ -2130,15 +2138,7 @@ mod tests {
         // here) near its turning points, into the region above v_max = 3.5 where the film
         // force and its Jacobian vanish. Without splits, Newton must restart from the step's
         // start ε (zero speed) and reach the root there.
-        let load = OperatingHistory {
-            load: FnLoad {
-                period: 1.0,
-                load: |t: f64| [-60.0 * (TAU * t).sin(), 0.0],
-            },
-            journal_speed: 1.0,
-            bearing_speed: 0.0,
-            feed_pressures: vec![],
-        };
+        let load = sine_load();
         let params = InverseParams {
             step_deg: 45.0,
             tolerance: 1e-10,
@@ -2166,15 +2166,7 @@ mod tests {
     fn a_step_newton_cannot_take_is_split_until_it_can() {
         // Equilibrium ε = W/k = (−0.6 sin 2πt, 0): 8 steps per cycle move it by up to 0.42, the
         // film reaches 0.2 per step: halves (0.21) still fail somewhere, quarters (0.11) pass.
-        let load = OperatingHistory {
-            load: FnLoad {
-                period: 1.0,
-                load: |t: f64| [-60.0 * (TAU * t).sin(), 0.0],
-            },
-            journal_speed: 1.0,
-            bearing_speed: 0.0,
-            feed_pressures: vec![],
-        };
+        let load = sine_load();
         let params = InverseParams {
             step_deg: 45.0,
             tolerance: 1e-10,
