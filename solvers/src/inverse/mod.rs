@@ -45,16 +45,23 @@
 //! (docs/conventions.md §4: finite differences across a switching film are meaningless). The discrete
 //! JFO film of the second generation is continuous in ε (`crate::reynolds`, module docs), so
 //! Newton converges to the tolerance on every step of the validation and compressor cases.
-//! Where the fresh Jacobian at an iterate is singular, Newton starts once more from the step's
-//! start ε: a predictor that extrapolates the journal away from the wall faster than the film
-//! can follow puts the guess where the squeeze suction cavitates the whole film (F = 0 and
-//! ∂F/∂ε = 0 all around it, so a split step, which keeps the speed, lands there again), and
-//! from zero speed the line search only moves downhill. (Found 2026-11-28: the compressor rod
-//! bearing at 4° steps failed in its third cycle in the step to 88° crank ("residual 1.000e0
-//! after 1 iterations", its first substep's guess in that region); with the restart it runs, h_min 3.829 µm against 3.835 µm at the case's 2°.)
-//! A step that still cannot (iteration limit, or no descent on a fresh Jacobian) is taken as
-//! two half steps, recursively up to `max_step_splits` halvings, and only at the deepest split
-//! accepted at its best point if |r|/max(|W|, W_ref) ≤ `accept_tolerance` (default 1e-2),
+//! Where Newton from the predictor's guess fails — a singular fresh Jacobian, no descent on a
+//! fresh one, or the iteration limit — it starts once more from the step's start ε (no
+//! squeeze velocity over the step), from which the line search only moves downhill. Near a
+//! sharp turn of the orbit the extrapolated guess can lie in another piece of the piecewise
+//! smooth JFO force: where the squeeze suction of a journal extrapolated away from the wall
+//! cavitates the whole film (F = 0 and ∂F/∂ε = 0 all around it, so a split step, which keeps
+//! the speed, lands there again), or where the exact Jacobian of that piece leads Newton into
+//! a local minimum of |r|. (Found 2026-11-28: the compressor rod bearing at 4° steps failed in
+//! its third cycle in the step to 88° crank, "residual 1.000e0 after 1 iterations"; with the
+//! restart it runs, h_min 3.829 µm against 3.835 µm at the case's 2°. And the shipped Flores
+//! feed-hole case had failed in its first cycle since the error control of the cycle steps
+//! (2026-11-27): a load reversal at 173.25° crank, residual 8.8e-2 of the load and no descent
+//! at the deepest split, from a guess 0.07 of the clearance ahead; restarted, it is periodic
+//! after 5 cycles with no stalled step — `tests/cli.rs`.)
+//! A step that still cannot (iteration limit, or no descent on a fresh Jacobian, after the
+//! restart) is taken as two half steps, recursively up to `max_step_splits` halvings, and only
+//! at the deepest split accepted at its best point if |r|/max(|W|, W_ref) ≤ `accept_tolerance` (default 1e-2),
 //! counted in [`InverseInfo::stalled_steps`] and reported; above that it is an error. (Until
 //! 2026-11-28 a stall was accepted before the split: the Flores feed-hole case with
 //! Crank–Nicolson accepted one at 174° of its first cycle, residual 1.3e-5 against 1e-6, after

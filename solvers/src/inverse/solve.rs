@@ -1276,9 +1276,38 @@ impl Stepper<'_> {
         // After a stall on a fresh Jacobian, one retry with a secant over a 100× wider difference
         // step (≥ 1e-3): it averages over the small force jumps of a switching JFO film.
         let mut wide_tried = false;
-        // Newton restarted once from the step's start after a singular fresh Jacobian.
+        // Newton restarted once from the step's start (below), and the iteration count at which
+        // it gives up (the restart gets a full count of its own).
         let mut restarted = false;
+        let mut limit = params.max_newton_iterations;
         let mut fd_h = params.fd_step;
+        // Where Newton from the guess fails — a singular fresh Jacobian, no descent on a fresh
+        // one, or the iteration limit — it starts once more from where the step starts (ε of
+        // the step's start: no squeeze velocity over the step). The guess is the predictor's
+        // extrapolation of the orbit, which near a sharp turn (a load reversal that sends the
+        // journal across the clearance) can land in another piece of the piecewise smooth JFO
+        // force, where the exact Jacobian of that piece leads Newton to a local minimum of
+        // |r| (the Flores feed-hole case at 173.25° of its first cycle: residual 8.8e-2 of
+        // the load, no descent, at the deepest split; from the step's start it converges), or
+        // into a region the squeeze suction cavitates entirely (F = 0, ∂F/∂ε = 0: the rod
+        // bearing at 4° steps). From the start the line search only moves downhill. Before a
+        // split: a restart costs a few film solves, a split at least two Newton solves.
+        macro_rules! restart_from_start {
+            () => {{
+                restarted = true;
+                limit = iterations + params.max_newton_iterations;
+                if relax {
+                    film.relax_next_step(relaxed(1.0));
+                }
+                cur = problem.evaluate(film, target.start, &mut self.stats)?;
+                loose = film.last_step_relaxed();
+                last_solved = target.start;
+                self.jac.valid = false;
+                fresh = false;
+            }};
+        }
+        let can_restart =
+            |restarted: bool, cur: &Iterate<F::State>| !restarted && cur.eps != target.start;
         loop {
             let converged = cur.res <= params.tolerance;
             if norm(cur.eps) >= params.collapse_eccentricity
@@ -1286,7 +1315,7 @@ impl Stepper<'_> {
             {
                 return Err(problem.collapse(&cur));
             }
-            if loose && (converged || iterations >= params.max_newton_iterations) {
+            if loose && (converged || iterations >= limit) {
                 // A relaxed film outside the film's finishing band: solve it tightly first.
                 cur = problem.evaluate(film, cur.eps, &mut self.stats)?;
                 last_solved = cur.eps;
@@ -1297,7 +1326,11 @@ impl Stepper<'_> {
                 problem.check_outputs(&cur)?;
                 return Ok(self.accept(cur, iterations));
             }
-            if iterations >= params.max_newton_iterations {
+            if iterations >= limit {
+                if can_restart(restarted, &cur) {
+                    restart_from_start!();
+                    continue;
+                }
                 return self.give_up(&problem, cur, iterations, film);
             }
             iterations += 1;
@@ -1305,22 +1338,10 @@ impl Stepper<'_> {
                 fresh = true;
             }
             let Some(delta) = self.newton_direction(&cur) else {
-                if fresh && !restarted && cur.eps != target.start {
-                    // A singular fresh Jacobian: the iterate lies where the film force does
-                    // not move with ε — typically a guess extrapolated so fast away from the
-                    // wall that the squeeze suction cavitates the whole film (F = 0 and
-                    // ∂F/∂ε = 0 around it; splitting the step keeps the speed and the flat
-                    // region). Newton starts once more from where the step starts (no squeeze
-                    // velocity), from which its line search only moves downhill.
-                    restarted = true;
-                    if relax {
-                        film.relax_next_step(relaxed(1.0));
-                    }
-                    cur = problem.evaluate(film, target.start, &mut self.stats)?;
-                    loose = film.last_step_relaxed();
-                    last_solved = target.start;
-                    self.jac.valid = false;
-                    fresh = false;
+                if fresh && can_restart(restarted, &cur) {
+                    // A singular fresh Jacobian: the film force does not move with ε here
+                    // (splitting the step would keep the speed and the flat region).
+                    restart_from_start!();
                     continue;
                 }
                 if fresh {
@@ -1352,6 +1373,7 @@ impl Stepper<'_> {
                     last_solved = cur.eps;
                     loose = false;
                 }
+                None if fresh && can_restart(restarted, &cur) => restart_from_start!(),
                 None if fresh => return self.give_up(&problem, cur, iterations, film),
                 None => self.jac.valid = false,
             }
@@ -2160,6 +2182,85 @@ mod tests {
             assert!(v.abs() <= 3.5, "{b:?}");
             assert!((k * e + d * v - want).abs() < 1e-7, "{b:?}");
         }
+    }
+
+    /// A static snap-through spring along x, F_x = −k a (u³ − 2u) with u = ε_x / a (and
+    /// F_y = −k ε_y): under the load W = (−2 k a, 0) the residual is −k a (u³ − 2u + 2), whose
+    /// one root is u ≈ −1.769 and whose |r| has a local minimum of 0.911 k a at u = √(2/3) —
+    /// Newton's classic trap, the stand-in for a JFO force whose extrapolated guess lies in
+    /// another piece of the force.
+    struct SnapThrough {
+        k: f64,
+        a: f64,
+    }
+
+    impl FilmModel for SnapThrough {
+        type State = [f64; 2];
+        fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
+            e
+        }
+        fn step(
+            &mut self,
+            _s: &[f64; 2],
+            e: [f64; 2],
+            _dt: f64,
+            _c: &OperatingConditions,
+        ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
+            let u = e[0] / self.a;
+            let f = [-self.k * self.a * (u * u * u - 2.0 * u), -self.k * e[1]];
+            Ok((toy_response(f, e), e))
+        }
+    }
+
+    #[test]
+    fn a_guess_in_a_local_minimum_of_the_residual_restarts_from_the_step_start() {
+        // From the guess u = 1.5 Newton descends into the local minimum of |r| at u = 0.816
+        // (residual 0.46 of the load, no descent on a fresh Jacobian) and, without a split
+        // left, would fail; from the step's start u = −1.5 it converges to the root.
+        let (k, a) = (100.0, 0.4);
+        let params = InverseParams {
+            tolerance: 1e-10,
+            jacobian: JacobianMethod::FiniteDifference,
+            max_step_splits: 0,
+            ..Default::default()
+        };
+        let mut stepper = Stepper {
+            params: &params,
+            w_ref: 1.0,
+            jac: Jacobian {
+                m: [[0.0; 2]; 2],
+                valid: false,
+            },
+            stats: Stats::default(),
+            stalls: Vec::new(),
+            control: None,
+        };
+        let cond = OperatingConditions {
+            journal_speed: 1.0,
+            bearing_speed: 0.0,
+            feed_pressures: vec![],
+        };
+        let start = [-1.5 * a, 0.0];
+        let target = Target {
+            dt: 0.01,
+            cond: &cond,
+            w: [-2.0 * k * a, 0.0],
+            at: Where {
+                time: 0.01,
+                crank_angle_deg: 3.6,
+                cycle: 1,
+            },
+            may_split: false,
+            start,
+        };
+        let mut film = SnapThrough { k, a };
+        let acc = stepper
+            .newton(&mut film, &start, [1.5 * a, 0.0], target)
+            .expect("restarted from the step's start");
+        let u = acc.eps[0] / a;
+        assert!((u * u * u - 2.0 * u + 2.0).abs() < 1e-9, "u = {u}");
+        assert!(u < -1.7, "the root, not the local minimum: u = {u}");
+        assert_eq!(stepper.stats.stalled, 0);
     }
 
     #[test]
