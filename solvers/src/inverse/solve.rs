@@ -2016,15 +2016,11 @@ mod tests {
         assert!((sol.summary.mean_power_loss - 1.0).abs() < 1e-12);
     }
 
-    /// A film that can only move a short way in one step: beyond |ε − ε_old| = `reach` it
-    /// pushes back with a force larger than any load, so a step whose equilibrium lies further
-    /// has no root at all (a stand-in for a JFO film whose cavity collapses within a step).
-    struct ShortReach {
-        k: f64,
-        reach: f64,
-    }
+    /// A toy film given by its force law F(ε_old, ε, Δt), whose state is ε itself: the films
+    /// of the step tests below.
+    struct ToyFilm<L>(L);
 
-    impl FilmModel for ShortReach {
+    impl<L: FnMut(&[f64; 2], [f64; 2], f64) -> [f64; 2]> FilmModel for ToyFilm<L> {
         type State = [f64; 2];
         fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
             e
@@ -2033,17 +2029,30 @@ mod tests {
             &mut self,
             s: &[f64; 2],
             e: [f64; 2],
-            _dt: f64,
+            dt: f64,
             _c: &OperatingConditions,
         ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
+            Ok((toy_response((self.0)(s, e, dt), e), e))
+        }
+    }
+
+    /// The force law of a [`ToyFilm`].
+    trait ForceLaw: FnMut(&[f64; 2], [f64; 2], f64) -> [f64; 2] {}
+    impl<L: FnMut(&[f64; 2], [f64; 2], f64) -> [f64; 2]> ForceLaw for L {}
+
+    /// A film that can only move a short way in one step: beyond |ε − ε_old| = `reach` it
+    /// pushes back with a force larger than any load, so a step whose equilibrium lies further
+    /// has no root at all (a stand-in for a JFO film whose cavity collapses within a step).
+    fn short_reach(k: f64, reach: f64) -> ToyFilm<impl ForceLaw> {
+        ToyFilm(move |s: &[f64; 2], e: [f64; 2], _dt: f64| {
             let d = [e[0] - s[0], e[1] - s[1]];
-            let mut f = [-self.k * e[0], -self.k * e[1]];
-            if norm(d) > self.reach {
-                let g = 10.0 * self.k / norm(d);
+            let mut f = [-k * e[0], -k * e[1]];
+            if norm(d) > reach {
+                let g = 10.0 * k / norm(d);
                 f = [f[0] - g * d[0], f[1] - g * d[1]];
             }
-            Ok((toy_response(f, e), e))
-        }
+            f
+        })
     }
 
     type SineLoad = OperatingHistory<FnLoad<fn(f64) -> [f64; 2]>>;
@@ -2064,26 +2073,11 @@ mod tests {
 
     /// A stiffening spring, F = −k (1 + b |ε|²) ε: no damping, so each step is the static
     /// root of k (1 + b |ε|²) ε = W(t), which Newton reaches quadratically from the predictor.
-    struct Stiffening {
-        k: f64,
-        b: f64,
-    }
-
-    impl FilmModel for Stiffening {
-        type State = [f64; 2];
-        fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
-            e
-        }
-        fn step(
-            &mut self,
-            _s: &[f64; 2],
-            e: [f64; 2],
-            _dt: f64,
-            _c: &OperatingConditions,
-        ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
-            let g = -self.k * (1.0 + self.b * (e[0] * e[0] + e[1] * e[1]));
-            Ok((toy_response([g * e[0], g * e[1]], e), e))
-        }
+    fn stiffening(k: f64, b: f64) -> ToyFilm<impl ForceLaw> {
+        ToyFilm(move |_s: &[f64; 2], e: [f64; 2], _dt: f64| {
+            let g = -k * (1.0 + b * (e[0] * e[0] + e[1] * e[1]));
+            [g * e[0], g * e[1]]
+        })
     }
 
     #[test]
@@ -2102,7 +2096,7 @@ mod tests {
             ..Default::default()
         };
         let (k, b) = (100.0, 2.0);
-        let sol = solve_inverse(&params, &load, &mut Stiffening { k, b }, &mut NoObserver).unwrap();
+        let sol = solve_inverse(&params, &load, &mut stiffening(k, b), &mut NoObserver).unwrap();
         assert_eq!(sol.info.stalled_steps, 0);
         assert!(sol.info.split_steps > 0);
         for st in &sol.steps {
@@ -2114,8 +2108,7 @@ mod tests {
             max_step_splits: 0,
             ..params
         };
-        let sol =
-            solve_inverse(&unsplit, &load, &mut Stiffening { k, b }, &mut NoObserver).unwrap();
+        let sol = solve_inverse(&unsplit, &load, &mut stiffening(k, b), &mut NoObserver).unwrap();
         assert!(sol.info.stalled_steps > 0);
         assert!(sol.info.max_stalled_residual <= unsplit.accept_tolerance);
     }
@@ -2123,35 +2116,15 @@ mod tests {
     /// A spring–damper film (F = −k ε − d ε̇, backward Euler) that carries nothing above the
     /// speed `v_max` (F = 0 and ∂F/∂ε = 0 there): the stand-in for a JFO film whose whole
     /// film the squeeze suction of a journal leaving the wall fast cavitates.
-    struct FlatWhenFast {
-        k: f64,
-        d: f64,
-        v_max: f64,
-    }
-
-    impl FilmModel for FlatWhenFast {
-        type State = [f64; 2];
-        fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
-            e
-        }
-        fn step(
-            &mut self,
-            s: &[f64; 2],
-            e: [f64; 2],
-            dt: f64,
-            _c: &OperatingConditions,
-        ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
+    fn flat_when_fast(k: f64, d: f64, v_max: f64) -> ToyFilm<impl ForceLaw> {
+        ToyFilm(move |s: &[f64; 2], e: [f64; 2], dt: f64| {
             let v = [(e[0] - s[0]) / dt, (e[1] - s[1]) / dt];
-            let f = if norm(v) > self.v_max {
+            if norm(v) > v_max {
                 [0.0; 2]
             } else {
-                [
-                    -self.k * e[0] - self.d * v[0],
-                    -self.k * e[1] - self.d * v[1],
-                ]
-            };
-            Ok((toy_response(f, e), e))
-        }
+                [-k * e[0] - d * v[0], -k * e[1] - d * v[1]]
+            }
+        })
     }
 
     #[test]
@@ -2170,7 +2143,7 @@ mod tests {
             ..Default::default()
         };
         let (k, d) = (100.0, 10.0);
-        let mut film = FlatWhenFast { k, d, v_max: 3.5 };
+        let mut film = flat_when_fast(k, d, 3.5);
         let sol = solve_inverse(&params, &load, &mut film, &mut NoObserver).unwrap();
         assert_eq!(sol.info.stalled_steps, 0);
         let dt = 1.0 / 8.0;
@@ -2189,27 +2162,11 @@ mod tests {
     /// one root is u ≈ −1.769 and whose |r| has a local minimum of 0.911 k a at u = √(2/3) —
     /// Newton's classic trap, the stand-in for a JFO force whose extrapolated guess lies in
     /// another piece of the force.
-    struct SnapThrough {
-        k: f64,
-        a: f64,
-    }
-
-    impl FilmModel for SnapThrough {
-        type State = [f64; 2];
-        fn initial_state(&self, e: [f64; 2]) -> [f64; 2] {
-            e
-        }
-        fn step(
-            &mut self,
-            _s: &[f64; 2],
-            e: [f64; 2],
-            _dt: f64,
-            _c: &OperatingConditions,
-        ) -> Result<(FilmResponse, [f64; 2]), FilmModelError> {
-            let u = e[0] / self.a;
-            let f = [-self.k * self.a * (u * u * u - 2.0 * u), -self.k * e[1]];
-            Ok((toy_response(f, e), e))
-        }
+    fn snap_through(k: f64, a: f64) -> ToyFilm<impl ForceLaw> {
+        ToyFilm(move |_s: &[f64; 2], e: [f64; 2], _dt: f64| {
+            let u = e[0] / a;
+            [-k * a * (u * u * u - 2.0 * u), -k * e[1]]
+        })
     }
 
     #[test]
@@ -2253,7 +2210,7 @@ mod tests {
             may_split: false,
             start,
         };
-        let mut film = SnapThrough { k, a };
+        let mut film = snap_through(k, a);
         let acc = stepper
             .newton(&mut film, &start, [1.5 * a, 0.0], target)
             .expect("restarted from the step's start");
@@ -2275,10 +2232,7 @@ mod tests {
             max_cycles: 2,
             ..Default::default()
         };
-        let mut film = ShortReach {
-            k: 100.0,
-            reach: 0.2,
-        };
+        let mut film = short_reach(100.0, 0.2);
         let sol = solve_inverse(&params, &load, &mut film, &mut NoObserver).unwrap();
         assert!(sol.info.split_steps > 0);
         for st in &sol.steps {
@@ -2290,10 +2244,7 @@ mod tests {
             max_step_splits: 0,
             ..params
         };
-        let mut film = ShortReach {
-            k: 100.0,
-            reach: 0.2,
-        };
+        let mut film = short_reach(100.0, 0.2);
         let err = solve_inverse(&strict, &load, &mut film, &mut NoObserver).unwrap_err();
         assert!(matches!(err, InverseError::NewtonFailed { .. }), "{err}");
     }
