@@ -1,8 +1,11 @@
 //! The `jbearing` binary end to end: bad case files give the exact message that names the file,
 //! the key and the line; `run` writes the Flores case's files; `batch` keeps going past a failing
-//! case; `check` accepts the shipped cases; `synth-loads` reproduces the shipped compressor tables.
+//! case; `check` accepts the shipped cases; `synth-loads` reproduces the shipped compressor tables;
+//! the Flores feed-hole case runs to a periodic orbit.
 //!
-//! Every test runs the binary as a subprocess and none opens an HDF5 file in this process (see
+//! Every test runs the binary as a subprocess. Two read run statistics from the HDF5 file their
+//! own run wrote, opening it once after the subprocess ended and never again (a subprocess that
+//! inherits the open descriptor and its lock can only block a later open of that same file: see
 //! the HDF5 file-locking note in `tests/output_python.rs`).
 
 use std::path::{Path, PathBuf};

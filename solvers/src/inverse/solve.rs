@@ -2171,9 +2171,10 @@ mod tests {
 
     #[test]
     fn a_guess_in_a_local_minimum_of_the_residual_restarts_from_the_step_start() {
-        // From the guess u = 1.5 Newton descends into the local minimum of |r| at u = 0.816
-        // (residual 0.46 of the load, no descent on a fresh Jacobian) and, without a split
-        // left, would fail; from the step's start u = −1.5 it converges to the root.
+        // From the guess u = 1.5 Newton descends towards the local minimum of |r| at u = 0.816
+        // (residual 0.46 of the load, far above the 1e-2 a stall may have) and, without a split
+        // left, would fail (measured on the code before the restart: NewtonFailed); from the
+        // step's start u = −1.5 it converges to the root.
         let (k, a) = (100.0, 0.4);
         let params = InverseParams {
             tolerance: 1e-10,
