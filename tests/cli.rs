@@ -335,6 +335,31 @@ fn inverse_solver_and_mobility_method_agree_on_the_short_bearing() {
             worst.is_finite() && (0.0..=1e-2).contains(&worst),
             "max_stalled_residual {worst}"
         );
+        // Each method's description holds for every configuration and points at the attribute
+        // that names the film or mobility model this case chose (once it claimed ADI sweeps and
+        // Booker's model whatever ran).
+        let text_attr = |group: &str, key: &str| -> String {
+            let v: hdf5_metno::types::VarLenUnicode = f
+                .group(group)
+                .unwrap()
+                .attr(key)
+                .unwrap()
+                .read_scalar()
+                .unwrap();
+            v.as_str().to_owned()
+        };
+        for (group, key, model) in [
+            ("rigorous", "film_model", "short-bearing"),
+            ("mobility", "model", "Booker"),
+        ] {
+            let description = text_attr(group, "description");
+            assert!(
+                description.contains(&format!("attribute {key})")),
+                "{group}: {description}"
+            );
+            let named = text_attr(group, key);
+            assert!(named.contains(model), "{group}/{key}: {named}");
+        }
     }
     let mut rdr = csv::Reader::from_path(out_dir.join("flores2006_mobility_summary.csv")).unwrap();
     let headers = rdr.headers().unwrap().clone();

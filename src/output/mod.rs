@@ -133,14 +133,19 @@ impl Method {
         }
     }
 
-    /// One line for humans, written as the group's `description` attribute.
+    /// One line for humans, written as the group's `description` attribute. It holds for every
+    /// configuration of the method; the film or mobility model the case chose is named in the
+    /// group's `film_model` (rigorous) or `model` (mobility) attribute.
     pub fn description(self) -> &'static str {
         match self {
             Method::Rigorous => {
-                "mass-conserving (JFO) universal Reynolds equation, finite differences with ADI \
-                 line sweeps, Newton iteration on the journal eccentricity"
+                "inverse solver: in each time step, Newton's method on the journal eccentricity \
+                 until the film force balances the load (the film: attribute film_model)"
             }
-            Method::Mobility => "Booker's mobility method (half-film squeeze solutions)",
+            Method::Mobility => {
+                "mobility method (Booker): the journal velocity from the film's mobility vector \
+                 under the load, integrated over the cycle (the mobility model: attribute model)"
+            }
         }
     }
 }
