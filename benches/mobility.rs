@@ -10,11 +10,16 @@
 //! - `mobility/flores_periodic_map`: the same with the tabulated mobility map.
 //! - `mobility/map_build_short_bearing`: building the default 41 × 37 map from the short-bearing
 //!   squeeze film (the once-per-L/D cost, before a Reynolds-based film replaces it).
+//! - `mobility/map_build_reynolds`: building the application's map (`mobility_model = "map"`:
+//!   21 × 19 nodes up to ε = 0.97) from the finite-difference Reynolds-condition squeeze film
+//!   for the compressor main bearing's L/D = 1/3 — the once-per-L/D cost a case with the map
+//!   pays before its mobility orbit.
 use criterion::Criterion;
 use jbearing_solvers::mobility::{
     BookerShortBearing, ExactShortBearing, LoadInterpolation, MobilityMap, MobilityMapParams,
     MobilityParams, OrbitParams, ShortBearingSqueeze, TabulatedLoad, solve_orbit,
 };
+use jbearing_solvers::squeeze_film::{ReynoldsSqueezeFilm, SqueezeFilmParams};
 use std::f64::consts::TAU;
 use std::hint::black_box;
 
@@ -80,6 +85,16 @@ pub fn bench(c: &mut Criterion) {
     });
     g.bench_function("map_build_short_bearing", |b| {
         b.iter(|| MobilityMap::build(black_box(&film), &MobilityMapParams::default()).unwrap())
+    });
+    g.finish();
+    // About a second per build: ten samples.
+    let mut g = c.benchmark_group("mobility");
+    g.sample_size(10);
+    let ld = 0.018288 / (2.0 * 0.02743);
+    let reynolds = ReynoldsSqueezeFilm::new(SqueezeFilmParams::new(ld)).unwrap();
+    let app_map = MobilityMapParams::for_squeeze_film_solver();
+    g.bench_function("map_build_reynolds", |b| {
+        b.iter(|| MobilityMap::build(black_box(&reynolds), &app_map).unwrap())
     });
     g.finish();
 }

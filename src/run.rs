@@ -1384,16 +1384,9 @@ fn mobility_map(ld: f64) -> Result<std::sync::Arc<MobilityMap>, std::sync::Arc<M
     cell.get_or_init(|| {
         let film = ReynoldsSqueezeFilm::new(SqueezeFilmParams::new(ld))
             .map_err(|e| Arc::new(MapBuildError::from(e)))?;
-        MobilityMap::build(
-            &film,
-            &MobilityMapParams {
-                eccentricity_nodes: 21,
-                angle_nodes: 19,
-                max_eccentricity: 0.97,
-            },
-        )
-        .map(Arc::new)
-        .map_err(|e| Arc::new(MapBuildError::from(e)))
+        MobilityMap::build(&film, &MobilityMapParams::for_squeeze_film_solver())
+            .map(Arc::new)
+            .map_err(|e| Arc::new(MapBuildError::from(e)))
     })
     .clone()
 }

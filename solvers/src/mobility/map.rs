@@ -63,6 +63,18 @@ pub trait PureSqueezeFilm {
         eps: [f64; 2],
         u_dir: [f64; 2],
     ) -> Result<[f64; 2], Box<dyn std::error::Error + Send + Sync>>;
+    /// The squeeze direction û = (cos a, sin a), |a| < π/2, whose load Z(ε, û) has no
+    /// y-component, and that load's x-component Z_x: the inversion a map node needs. The
+    /// provided method searches a (Illinois regula falsi in the bracket (−π/2, π/2), where
+    /// Z_y changes sign) by calling [`squeeze_load`](Self::squeeze_load) 10–20 times; a
+    /// provider that can do better (the finite-difference film: its load is linear in û for a
+    /// fixed cavity) overrides it.
+    fn balanced_squeeze(
+        &self,
+        eps: [f64; 2],
+    ) -> Result<([f64; 2], f64), Box<dyn std::error::Error + Send + Sync>> {
+        invert_squeeze_fallible(|u| self.squeeze_load(eps, u))
+    }
 }
 
 /// The short-bearing Gumbel squeeze film in closed form: Z = 2 (L/D)² J(û).
@@ -97,6 +109,21 @@ pub struct MobilityMapParams {
     pub angle_nodes: usize,
     /// Largest tabulated ε (< 1); the orbit treats it as the collapse limit.
     pub max_eccentricity: f64,
+}
+
+impl MobilityMapParams {
+    /// 21 × 19 nodes up to ε = 0.97: the grid of the map the application builds from the
+    /// finite-difference Reynolds-condition squeeze film ([`crate::squeeze_film`], its default
+    /// grid) for a case's L/D, and what `validation/tests/mobility_finite_length.rs` checks
+    /// against direct film solves between the nodes. Each node is one balanced squeeze of the
+    /// film (2–3 ms on the default film grid: about 1 s per map, docs/performance.md).
+    pub fn for_squeeze_film_solver() -> Self {
+        Self {
+            eccentricity_nodes: 21,
+            angle_nodes: 19,
+            max_eccentricity: 0.97,
+        }
+    }
 }
 
 impl Default for MobilityMapParams {
@@ -202,13 +229,12 @@ impl MobilityMap {
                 let psi = psi_of_chi(j as f64 * dchi);
                 let eps = [e * psi.cos(), e * psi.sin()];
                 let (u, zx) =
-                    invert_squeeze_fallible(|u| film.squeeze_load(eps, u)).map_err(|source| {
-                        MobilityMapError::Provider {
+                    film.balanced_squeeze(eps)
+                        .map_err(|source| MobilityMapError::Provider {
                             eccentricity: e,
                             angle_deg: psi.to_degrees(),
                             source,
-                        }
-                    })?;
+                        })?;
                 if !(zx.is_finite() && zx > 0.0) {
                     return Err(MobilityMapError::BadNode {
                         eccentricity: e,
