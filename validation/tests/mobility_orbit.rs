@@ -1,9 +1,11 @@
 //! Orbit integration against closed forms: the pure-squeeze approach of a non-rotating journal
 //! under a constant load (Booker's mobility on the load line), ending in a film collapse that
-//! must be reported with its time and crank angle; and the input checks.
+//! must be reported with its time and crank angle — or, with a map whose range ends first, the
+//! orbit leaving that range, which is not a collapse; and the input checks.
 
 use jbearing_solvers::mobility::{
-    BookerShortBearing, MobilityError, MobilityParams, OrbitParams, PeriodicLoad, solve_orbit,
+    BookerShortBearing, ExactShortBearing, MobilityError, MobilityMap, MobilityMapParams,
+    MobilityParams, OrbitParams, PeriodicLoad, ShortBearingSqueeze, solve_orbit,
 };
 use std::f64::consts::PI;
 
@@ -103,6 +105,78 @@ fn pure_squeeze_approach_follows_the_closed_form_and_collapses_on_time() {
         }
         other => panic!(
             "expected a film collapse, got {:?}",
+            other.map(|o| (o.cycles, o.summary))
+        ),
+    }
+}
+
+/// The pure-squeeze approach of the test above with a short-bearing map tabulated only up to
+/// ε = 0.9: the orbit stops where it leaves the map and says so — the film has not collapsed
+/// (the collapse limit is 0.9995). The time it leaves must be the time the exact short-bearing
+/// mobility (a root search per right-hand side, not the map's interpolation) reaches ε = 0.9,
+/// run as a collapse at that limit; the map interpolates that film to ~1e-3 (its own tests),
+/// so 5e-3. (Booker's closed form of the test above is a fit of that film, 4.5 % later here.)
+#[test]
+fn a_map_ends_the_orbit_at_its_edge_not_as_a_collapse() {
+    let b = still_bearing();
+    let ld = b.length_to_diameter();
+    let edge: f64 = 0.9;
+    let load = Constant {
+        w: [200.0, 0.0],
+        period: 0.7,
+    };
+    let mut p = OrbitParams::new(b);
+    p.initial_eccentricity = [0.2, 0.0];
+    p.periodicity_tolerance = f64::INFINITY;
+    p.max_cycles = 3;
+    let mut reference = p;
+    reference.eccentricity_limit = edge;
+    let (t_edge, edge_cycle) = match solve_orbit(
+        &reference,
+        &ExactShortBearing {
+            length_to_diameter: ld,
+        },
+        &load,
+    ) {
+        Err(MobilityError::FilmCollapse { time, cycle, .. }) => (time, cycle),
+        other => panic!(
+            "expected the exact short bearing to reach ε = {edge}, got {:?}",
+            other.map(|o| (o.cycles, o.summary))
+        ),
+    };
+    let map = MobilityMap::build(
+        &ShortBearingSqueeze {
+            length_to_diameter: ld,
+        },
+        &MobilityMapParams {
+            eccentricity_nodes: 21,
+            angle_nodes: 19,
+            max_eccentricity: edge,
+        },
+    )
+    .expect("map");
+    match solve_orbit(&p, &map, &load) {
+        Err(MobilityError::OutsideModelRange {
+            time,
+            cycle,
+            eccentricity,
+            model_limit,
+            collapse_limit,
+            ..
+        }) => {
+            assert_eq!(cycle, edge_cycle);
+            assert!(
+                (time - t_edge).abs() < 5e-3 * (t_edge + (cycle - 1) as f64 * load.period),
+                "left the map at {time:e} s into cycle {cycle}, the exact short bearing reached \
+                 ε = {edge} at {t_edge:e} s"
+            );
+            // Stopped at the map's edge, not at the collapse limit 0.9995: the largest produced
+            // sample lies within the event's root location (5e-6 seen) of it.
+            assert!((eccentricity - edge).abs() < 1e-5, "{eccentricity}");
+            assert_eq!((model_limit, collapse_limit), (edge, p.eccentricity_limit));
+        }
+        other => panic!(
+            "expected the orbit to leave the map, got {:?}",
             other.map(|o| (o.cycles, o.summary))
         ),
     }

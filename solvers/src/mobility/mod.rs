@@ -184,6 +184,19 @@ pub enum MobilityError {
         eccentricity: f64,
         limit: f64,
     },
+    /// The orbit reached the edge of the mobility model's range (a tabulated map's largest ε),
+    /// which lies below the collapse limit: the model cannot say what the film does beyond it.
+    #[error(
+        "the orbit left the mobility model's range: |ε| reached {eccentricity:.6}, the model covers |ε| < {model_limit} (not a film collapse: the collapse limit is {collapse_limit}) at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° (cycle {cycle})"
+    )]
+    OutsideModelRange {
+        time: f64,
+        crank_angle_deg: f64,
+        cycle: usize,
+        eccentricity: f64,
+        model_limit: f64,
+        collapse_limit: f64,
+    },
     /// The ODE integrator stopped (step size underflow, too many steps, stiffness).
     #[error(
         "orbit integration failed at t = {time:.6e} s, crank angle {crank_angle_deg:.2}° (cycle {cycle}): {reason}"

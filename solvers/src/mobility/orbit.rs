@@ -23,9 +23,11 @@
 //! The last cycle is reported, with times measured from its start (so crank angles follow the
 //! load's own convention). The film collapses when |ε| reaches `eccentricity_limit` (< 1): an
 //! event of the integrator stops the run and [`MobilityError::FilmCollapse`] names the time,
-//! crank angle and cycle. Within a trial Runge–Kutta stage beyond the model's range the mobility
-//! is evaluated at the radially clamped position; such stages never reach the output because the
-//! collapse event ends the run first.
+//! crank angle and cycle. A model whose range ends below that limit (a tabulated map) stops the
+//! orbit at its edge instead, reported as [`MobilityError::OutsideModelRange`]: the film has not
+//! collapsed there, the model just cannot follow it further. Within a trial Runge–Kutta stage
+//! beyond the model's range the mobility is evaluated at the radially clamped position; such
+//! stages never reach the output because the limit event ends the run first.
 
 use super::performance::{performance_at, squeeze_rate};
 use super::{MobilityError, MobilityModel, MobilityParams, PerformancePoint, PeriodicLoad};
@@ -334,7 +336,11 @@ fn integrate_cycle<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
             }
         })?;
     if matches!(sol.status, Status::Interrupted) || sol.t.len() != n + 1 {
-        return Err(incomplete_cycle(&sol, t0, y0, n, load, limit, cycle));
+        let limits = Limits {
+            orbit: limit,
+            collapse: params.eccentricity_limit,
+        };
+        return Err(incomplete_cycle(&sol, t0, y0, n, load, limits, cycle));
     }
     for (t, y) in sol.t.iter().zip(&sol.y) {
         if !(y[0].is_finite() && y[1].is_finite()) {
@@ -354,9 +360,17 @@ fn integrate_cycle<M: MobilityModel + ?Sized, L: PeriodicLoad + ?Sized>(
     })
 }
 
-/// The error of a cycle that the collapse event interrupted or that is missing output
-/// samples (of `n` + 1), at the produced sample where |ε| is largest (the start `y0` at `t0`
-/// when none was): a film collapse when the event fired or |ε| reached `limit`, else an
+/// The |ε| at which an orbit stops: `orbit` = min(`collapse`, the model's largest ε).
+#[derive(Debug, Clone, Copy)]
+struct Limits {
+    orbit: f64,
+    collapse: f64,
+}
+
+/// The error of a cycle that the limit event interrupted or that is missing output samples
+/// (of `n` + 1), at the produced sample where |ε| is largest (the start `y0` at `t0` when none
+/// was): when the event fired or |ε| reached the orbit's limit, a film collapse — or, if the
+/// model's range ends below the collapse limit, the orbit leaving that range; else an
 /// integration error counting the samples.
 fn incomplete_cycle<L: PeriodicLoad + ?Sized>(
     sol: &Solution<f64, [f64; 2]>,
@@ -364,9 +378,10 @@ fn incomplete_cycle<L: PeriodicLoad + ?Sized>(
     y0: [f64; 2],
     n: usize,
     load: &L,
-    limit: f64,
+    limits: Limits,
     cycle: usize,
 ) -> MobilityError {
+    let limit = limits.orbit;
     let (t_end, y_end) = sol
         .t
         .iter()
@@ -375,6 +390,16 @@ fn incomplete_cycle<L: PeriodicLoad + ?Sized>(
         .map(|(t, y)| (*t, *y))
         .unwrap_or((t0, y0));
     let e = y_end[0].hypot(y_end[1]);
+    if (matches!(sol.status, Status::Interrupted) || e >= limit) && limit < limits.collapse {
+        return MobilityError::OutsideModelRange {
+            time: t_end - t0,
+            crank_angle_deg: load.crank_angle_deg(t_end - t0),
+            cycle,
+            eccentricity: e,
+            model_limit: limit,
+            collapse_limit: limits.collapse,
+        };
+    }
     if matches!(sol.status, Status::Interrupted) || e >= limit {
         return MobilityError::FilmCollapse {
             time: t_end - t0,
