@@ -18,7 +18,8 @@
 //!          + 400 B · samples per cycle;
 //! time   ≈ steps · 6 ms · (n / 3720)^2 (rigorous Reynolds film; the measured exponent is
 //!          1.6–2.0) + steps · 20 µs (short-bearing film) + samples · cycles · 20 µs (mobility)
-//!          + 10 s (the finite-length mobility map),
+//!          + 1 s (the finite-length mobility map: `mobility/map_build_reynolds`, 0.99 s on
+//!          the same machine, 2026-11-28; 10 s before that day's faster map build),
 //! where steps = steps per cycle × (max cycles + 1 run-in); with a heat balance
 //! (`[lubricant.heat_balance]`) the rigorous time × 3 and the mobility orbits × 5 (solves a
 //! balance typically takes: 2–3 rigorous from the mobility method's start, 3–5 mobility; the
@@ -144,7 +145,7 @@ pub fn estimate(case: &Case) -> Estimate {
         // The mobility method runs up to 5 × max cycles (at least 10).
         seconds += mobility_solves * samples * (5.0 * case.solver.max_cycles.max(2) as f64) * 20e-6;
         if case.solver.mobility_model == MobilityModelChoice::Map {
-            seconds += 10.0;
+            seconds += 1.0;
         }
     }
     Estimate {
