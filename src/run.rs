@@ -131,7 +131,10 @@ pub enum RunError {
         source: jbearing_solvers::elastic::ElasticError,
     },
     /// The heat balance of a method did not close (or a solve inside it failed).
-    #[error("case '{case}': {method} method: {}", heat::error_chain(source.as_ref()))]
+    #[error(
+        "case '{case}': {method} method: {}",
+        heat::error_chain_within(source.as_ref(), &format!("case '{case}': {method} method: "))
+    )]
     HeatBalance {
         /// Case name.
         case: String,
@@ -1728,13 +1731,21 @@ pub mod heat {
     /// `e` and its sources in one line, "outer: inner: …"; a source whose text the line
     /// already holds (errors that print their source in their own message) is not repeated.
     pub fn error_chain(e: &dyn std::error::Error) -> String {
+        error_chain_within(e, "")
+    }
+
+    /// [`error_chain`] inside a message that already begins with `prefix` (the case and
+    /// method): a source's own copy of that prefix is dropped, so the failed solve of a heat
+    /// balance does not name its case and method twice.
+    pub fn error_chain_within(e: &dyn std::error::Error, prefix: &str) -> String {
         let mut s = e.to_string();
         let mut src = e.source();
         while let Some(inner) = src {
-            let text = inner.to_string();
-            if !s.contains(&text) {
+            let full = inner.to_string();
+            let text = full.strip_prefix(prefix).unwrap_or(&full);
+            if !s.contains(text) {
                 s.push_str(": ");
-                s.push_str(&text);
+                s.push_str(text);
             }
             src = inner.source();
         }
@@ -2015,6 +2026,49 @@ mod timestamp_tests {
         assert_eq!(s.len(), 20, "{s}");
         assert!(s.ends_with('Z') && s.as_bytes()[10] == b'T', "{s}");
         assert!(s.parse::<jiff::Timestamp>().is_ok(), "{s}");
+    }
+}
+
+#[cfg(test)]
+mod heat_balance_error_tests {
+    use super::*;
+    use jbearing_solvers::heat_balance::HeatBalanceError;
+    use jbearing_solvers::mobility::MobilityError;
+
+    /// A solve that fails inside a heat balance is reported once with its case and method
+    /// (the solve's own error names them too) and with all its numbers.
+    #[test]
+    fn a_failed_solve_inside_a_heat_balance_names_its_case_once() {
+        let solve = RunError::Mobility {
+            case: "main".into(),
+            source: MobilityError::FilmCollapse {
+                time: 0.03,
+                crank_angle_deg: 322.13,
+                cycle: 1,
+                eccentricity: 0.9995,
+                limit: 0.9995,
+            },
+        };
+        let e = RunError::HeatBalance {
+            case: "main".into(),
+            method: Method::Mobility,
+            source: Box::new(HeatBalanceError::Solve {
+                iteration: 1,
+                temperature: 70.0,
+                source: solve,
+            }),
+        };
+        let text = e.to_string();
+        assert_eq!(text.matches("case 'main'").count(), 1, "{text}");
+        assert_eq!(text.matches("mobility method").count(), 1, "{text}");
+        assert!(
+            text.starts_with(
+                "case 'main': mobility method: heat balance: the solve at T = 70.00 °C \
+                 (iteration 1) failed: film collapse: |ε| reached 0.999500"
+            ),
+            "{text}"
+        );
+        assert!(text.contains("crank angle 322.13° (cycle 1)"), "{text}");
     }
 }
 
