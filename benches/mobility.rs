@@ -11,7 +11,7 @@
 //! - `mobility/map_build_short_bearing`: building the default 41 × 37 map from the short-bearing
 //!   squeeze film (the once-per-L/D cost, before a Reynolds-based film replaces it).
 //! - `mobility/map_build_reynolds`: building the application's map (`mobility_model = "map"`:
-//!   21 × 19 nodes up to ε = 0.97) from the finite-difference Reynolds-condition squeeze film
+//!   27 × 19 nodes up to ε = 0.99) from the finite-difference Reynolds-condition squeeze film
 //!   for the compressor main bearing's L/D = 1/3 — the once-per-L/D cost a case with the map
 //!   pays before its mobility orbit.
 use criterion::Criterion;

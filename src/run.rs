@@ -1316,7 +1316,7 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
     params.eccentricity_limit = case.solver.eccentricity_limit.max(0.9995);
     let load = CaseLoad(case, case.load());
     let ld = bearing.length_to_diameter();
-    let (orbit, model_name): (OrbitInfo, &str) = match case.solver.mobility_model {
+    let (orbit, model_name): (OrbitInfo, String) = match case.solver.mobility_model {
         MobilityModelChoice::Booker => (
             solve_orbit(
                 &params,
@@ -1326,7 +1326,7 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
                 &load,
             )
             .map_err(err)?,
-            "Booker short-bearing closed form ([Flores2006] eqs. 28-35)",
+            "Booker short-bearing closed form ([Flores2006] eqs. 28-35)".into(),
         ),
         MobilityModelChoice::ExactShort => (
             solve_orbit(
@@ -1337,7 +1337,7 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
                 &load,
             )
             .map_err(err)?,
-            "exact short-bearing mobility (inverted squeeze integrals)",
+            "exact short-bearing mobility (inverted squeeze integrals)".into(),
         ),
         MobilityModelChoice::Map => {
             // Finite-length mobility (docs/conventions.md §6, Goenka's construction): pure-squeeze
@@ -1348,11 +1348,16 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
             })?;
             let map: &MobilityMap = &map;
             check_model(map, ld);
-            params.eccentricity_limit = params.eccentricity_limit.min(map.max_eccentricity());
+            // The orbit stops at the map's edge by itself (reported as leaving the model's
+            // range, not as a film collapse).
+            let grid = MobilityMapParams::for_squeeze_film_solver();
             (
                 solve_orbit(&params, map, &load).map_err(err)?,
-                "finite-length mobility map: pure-squeeze Reynolds-condition film of this L/D \
-                 (squeeze_film), 21 x 19 nodes up to eps = 0.97",
+                format!(
+                    "finite-length mobility map: pure-squeeze Reynolds-condition film of this L/D \
+                     (squeeze_film), {} x {} nodes up to eps = {}",
+                    grid.eccentricity_nodes, grid.angle_nodes, grid.max_eccentricity
+                ),
             )
         }
     };
@@ -1363,10 +1368,10 @@ pub fn run_mobility(case: &Case, observer: &dyn RunObserver) -> Result<MethodRes
         orbit.periodicity_change,
     );
     observer.method_done(&case.name, Method::Mobility);
-    Ok(mobility_result(case, &orbit, model_name, &bearing))
+    Ok(mobility_result(case, &orbit, &model_name, &bearing))
 }
 
-/// The finite-length mobility map of `ld` (21 × 19 nodes up to ε = 0.97), built once per
+/// The finite-length mobility map of `ld` ([`MobilityMapParams::for_squeeze_film_solver`]), built once per
 /// process and shared: it depends on L/D alone (the map is dimensionless), and a heat balance
 /// or a batch of cases of one bearing asks for it many times.
 fn mobility_map(ld: f64) -> Result<std::sync::Arc<MobilityMap>, std::sync::Arc<MapBuildError>> {

@@ -112,16 +112,19 @@ pub struct MobilityMapParams {
 }
 
 impl MobilityMapParams {
-    /// 21 × 19 nodes up to ε = 0.97: the grid of the map the application builds from the
+    /// 27 × 19 nodes up to ε = 0.99: the grid of the map the application builds from the
     /// finite-difference Reynolds-condition squeeze film ([`crate::squeeze_film`], its default
     /// grid) for a case's L/D, and what `validation/tests/mobility_finite_length.rs` checks
-    /// against direct film solves between the nodes. Each node is one balanced squeeze of the
-    /// film (2–3 ms on the default film grid: about 1 s per map, docs/performance.md).
+    /// against direct film solves between the nodes. The film's default grid is within 1 % of
+    /// a grid twice as fine up to ε = 0.99 for L/D ≤ 1 (0.2 % at L/D = 1/8, 0.44 % at 1/2,
+    /// 0.77 % at 1; docs/validation.md); the node spacing in s = −ln(1 − ε) is 0.18, that of
+    /// the 21 nodes up to ε = 0.97 used before. Each node is one balanced squeeze of the film
+    /// (2–3 ms on the default film grid: about 1 s per map, docs/performance.md).
     pub fn for_squeeze_film_solver() -> Self {
         Self {
-            eccentricity_nodes: 21,
+            eccentricity_nodes: 27,
             angle_nodes: 19,
-            max_eccentricity: 0.97,
+            max_eccentricity: 0.99,
         }
     }
 }
