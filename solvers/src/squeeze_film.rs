@@ -634,7 +634,7 @@ mod tests {
     /// The balanced squeeze of a map node by the linear-in-û active-set passes is the node the
     /// bracketed root search over [`ReynoldsSqueezeFilm::solve`] finds (the independent route
     /// the map used before), on the default grid for short, medium and long bearings, from the
-    /// concentric film to the map's edge ε = 0.97, with ε on, across and against the load line.
+    /// concentric film to the map's edge ε = 0.99, with ε on, across and against the load line.
     /// Both solve the same complementarity problem with its root in a; they differ by the root
     /// search's end (a bracket of 1e-14) and round-off: 1e-10 relative. The node must come from
     /// the passes, not the bracketed fallback, and its load must have no y-component.
@@ -650,6 +650,7 @@ mod tests {
                 (0.9, 45.0),
                 (0.97, 2.0),
                 (0.97, 120.0),
+                (0.99, 30.0),
             ] {
                 let psi = f64::to_radians(psi_deg);
                 let eps = [e * psi.cos(), -e * psi.sin()];
