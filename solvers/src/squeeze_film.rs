@@ -319,10 +319,10 @@ impl ReynoldsSqueezeFilm {
             }
             let (zx, _) = grid.load(&px, ld);
             let (zy, _) = grid.load(&py, ld);
-            let a = (-zx[1] / zy[1]).atan();
-            if !a.is_finite() {
+            if !(zy[1] != 0.0 && zy[1].is_finite() && zx[1].is_finite()) {
                 return Ok(None);
             }
+            let a = (-zx[1] / zy[1]).atan();
             let (sa, ca) = a.sin_cos();
             for k in 0..nn {
                 p[k] = ca * px[k] + sa * py[k];
