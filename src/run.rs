@@ -81,7 +81,10 @@ pub enum RunError {
     #[error(transparent)]
     Case(#[from] CaseError),
     /// The mobility method failed.
-    #[error("case '{case}': mobility method: {source}")]
+    #[error(
+        "case '{case}': mobility method: {source}{}",
+        leaving_the_map_hint(source)
+    )]
     Mobility {
         /// Case name.
         case: String,
@@ -1284,6 +1287,18 @@ impl PeriodicLoad for CaseLoad<'_> {
     }
 }
 
+/// What a user can do when the mobility orbit left the model's range (the finite-length map
+/// ends at ε = 0.99, the closed forms reach the collapse limit); empty for other errors.
+fn leaving_the_map_hint(e: &MobilityError) -> &'static str {
+    match e {
+        MobilityError::OutsideModelRange { .. } => {
+            "; solver.mobility_model = \"booker\" or \"exact_short\" follow the orbit to the \
+             collapse limit"
+        }
+        _ => "",
+    }
+}
+
 /// Booker's mobility method on the case.
 ///
 /// The mobility ODE takes constant speeds; a case with speed histories (the connecting-rod
@@ -2074,6 +2089,37 @@ mod heat_balance_error_tests {
             "{text}"
         );
         assert!(text.contains("crank angle 322.13° (cycle 1)"), "{text}");
+        assert!(!text.contains("mobility_model"), "{text}");
+    }
+
+    /// An orbit that leaves the map says so and names the keys that follow it further.
+    #[test]
+    fn leaving_the_map_names_the_models_that_go_further() {
+        let e = RunError::Mobility {
+            case: "heavy".into(),
+            source: MobilityError::OutsideModelRange {
+                time: 0.03,
+                crank_angle_deg: 322.13,
+                cycle: 1,
+                eccentricity: 0.99,
+                model_limit: 0.99,
+                collapse_limit: 0.9995,
+            },
+        };
+        let text = e.to_string();
+        assert!(
+            text.starts_with(
+                "case 'heavy': mobility method: the orbit left the mobility model's range"
+            ),
+            "{text}"
+        );
+        assert!(
+            text.ends_with(
+                "(cycle 1); solver.mobility_model = \"booker\" or \"exact_short\" follow the \
+                 orbit to the collapse limit"
+            ),
+            "{text}"
+        );
     }
 }
 
