@@ -116,8 +116,9 @@ impl MobilityMapParams {
     /// finite-difference Reynolds-condition squeeze film ([`crate::squeeze_film`], its default
     /// grid) for a case's L/D, and what `validation/tests/mobility_finite_length.rs` checks
     /// against direct film solves between the nodes. The film's default grid is within 1 % of
-    /// a grid twice as fine up to ε = 0.99 for L/D ≤ 1 (0.2 % at L/D = 1/8, 0.44 % at 1/2,
-    /// 0.77 % at 1; docs/validation.md); the node spacing in s = −ln(1 − ε) is 0.18, that of
+    /// a grid twice as fine up to ε = 0.99 for L/D ≤ 1 (0.44 % at L/D = 1/2 in
+    /// docs/validation.md; 0.2 % at 1/8 and 0.77 % at 1 in a one-off run of 2026-11-28,
+    /// docs/performance.md); the node spacing in s = −ln(1 − ε) is 0.18, that of
     /// the 21 nodes up to ε = 0.97 used before. Each node is one balanced squeeze of the film
     /// (2–3 ms on the default film grid: about 1 s per map, docs/performance.md).
     pub fn for_squeeze_film_solver() -> Self {
