@@ -18,7 +18,7 @@
 //!          + 400 B · samples per cycle;
 //! time   ≈ steps · 6 ms · (n / 3720)^2 (rigorous Reynolds film; the measured exponent is
 //!          1.6–2.0) + steps · 20 µs (short-bearing film) + samples · cycles · 20 µs (mobility)
-//!          + 1 s (the finite-length mobility map: `mobility/map_build_reynolds`, 0.99 s on
+//!          + 1 s (the finite-length mobility map: `mobility/map_build_reynolds`, 1.19 s on
 //!          the same machine, 2026-11-28; 10 s before that day's faster map build),
 //! where steps = steps per cycle × (max cycles + 1 run-in); with a heat balance
 //! (`[lubricant.heat_balance]`) the rigorous time × 3 and the mobility orbits × 5 (solves a

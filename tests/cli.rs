@@ -3,10 +3,10 @@
 //! case; `check` accepts the shipped cases; `synth-loads` reproduces the shipped compressor tables;
 //! the Flores feed-hole case runs to a periodic orbit.
 //!
-//! Every test runs the binary as a subprocess. Two read run statistics from the HDF5 file their
-//! own run wrote, opening it once after the subprocess ended and never again (a subprocess that
-//! inherits the open descriptor and its lock can only block a later open of that same file: see
-//! the HDF5 file-locking note in `tests/output_python.rs`).
+//! Every test runs the binary as a subprocess. Seven read the HDF5 file their own run wrote,
+//! each opening it after that subprocess ended and starting no subprocess on the same file while
+//! it is open (a subprocess that inherits the open descriptor and its lock can only block a later
+//! open of that same file: see the HDF5 file-locking note in `tests/output_python.rs`).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -152,8 +152,9 @@ pub struct ReynoldsSqueezeFilm {
     /// Symbolic Cholesky of the grid's 5-point pattern (the same for every ε, û and active
     /// set: active nodes keep their pattern entries with zero values), computed once.
     symbolic: SymbolicLlt<usize>,
-    /// The last converged active set and the ε it belongs to: the mobility inversion asks for
-    /// ~10–20 squeeze directions at one ε, whose cavities differ little, so the next solve
+    /// The last converged active set and the ε it belongs to: a bracketed inversion over
+    /// [`Self::solve`] (the fallback of [`Self::balanced`], or a caller of `squeeze_load`) asks
+    /// for ~10–20 squeeze directions at one ε, whose cavities differ little, so the next solve
     /// starts from it (a start guess only: the answer does not depend on it).
     last_active: Mutex<Option<([u64; 2], Vec<bool>)>>,
     /// The active set of the last balanced squeeze ([`Self::balanced`]'s start guess).
