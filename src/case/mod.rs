@@ -1732,7 +1732,8 @@ fn check_grid(
         ));
     }
     let dtheta = std::f64::consts::TAU / g.n_theta as f64;
-    let dz = length / (g.n_z - 1) as f64;
+    // The film's cell-centred axial spacing (n_z − 2 cells between the end rows).
+    let dz = length / (g.n_z - 2) as f64;
     for (i, gr) in grooves.iter().enumerate() {
         let arc = gr.angular_width;
         if arc < dtheta {
@@ -1740,7 +1741,7 @@ fn check_grid(
                 "grid.n_theta",
                 format!(
                     "n_theta = {} gives a node spacing of {:.2}°, wider than groove {i} \
-                     ({:.2}° around): the groove would have no nodes; use n_theta ≥ {}",
+                     ({:.2}° around): the grid does not resolve it; use n_theta ≥ {}",
                     g.n_theta,
                     dtheta.to_degrees(),
                     arc.to_degrees(),
@@ -1753,11 +1754,11 @@ fn check_grid(
                 "grid.n_z",
                 format!(
                     "n_z = {} gives an axial spacing of {:.3} mm, wider than groove {i} ({:.3} mm \
-                     wide): the groove would have no nodes; use n_z ≥ {}",
+                     wide): the grid does not resolve it; use n_z ≥ {}",
                     g.n_z,
                     dz * 1e3,
                     gr.axial_width * 1e3,
-                    ((length / gr.axial_width).ceil() as usize).saturating_add(1)
+                    ((length / gr.axial_width).ceil() as usize).saturating_add(2)
                 ),
             ));
         }

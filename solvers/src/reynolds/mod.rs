@@ -1729,11 +1729,12 @@ impl ReynoldsSolver {
             for j in 0..nz {
                 let k = i * nz + j;
                 let mu_e = 0.5 * (mu[k] + mu[ie * nz + j]);
-                self.k_theta[k] = beta * h.face_theta[k].powi(3) / (12.0 * mu_e);
+                self.k_theta[k] =
+                    grid.theta_face_factor[k] * beta * h.face_theta[k].powi(3) / (12.0 * mu_e);
                 if j + 1 < nz {
                     let hf = 0.5 * (h.node[k] + h.node[k + 1]);
                     let mu_n = 0.5 * (mu[k] + mu[k + 1]);
-                    self.k_z[k] = beta * hf.powi(3) / (12.0 * mu_n);
+                    self.k_z[k] = grid.z_face_factor[k] * beta * hf.powi(3) / (12.0 * mu_n);
                 } else {
                     self.k_z[k] = 0.0;
                 }

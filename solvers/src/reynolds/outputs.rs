@@ -303,13 +303,15 @@ impl Shear {
                 let muf = 0.5 * (mu[k] + mu[ke]);
                 let gp = (pressure[ke] - pressure[k]) / dx;
                 let face_area = dx * grid.row_width(j);
-                out.power_loss += hf.powi(3) / (12.0 * muf) * gp * gp * face_area;
+                out.power_loss +=
+                    grid.theta_face_factor[k] * hf.powi(3) / (12.0 * muf) * gp * gp * face_area;
                 if j + 1 < nz {
                     let hf = 0.5 * (h + core.h[k + 1]);
                     let muf = 0.5 * (mu[k] + mu[k + 1]);
                     let gap = grid.z_gap(j);
                     let gp = (pressure[k + 1] - pressure[k]) / gap;
-                    out.power_loss += hf.powi(3) / (12.0 * muf) * gp * gp * dx * gap;
+                    out.power_loss +=
+                        grid.z_face_factor[k] * hf.powi(3) / (12.0 * muf) * gp * gp * dx * gap;
                 }
             }
         }

@@ -1217,3 +1217,96 @@ fn newton_jacobian_keeps_two_digits() {
         }
     }
 }
+
+/// A groove round the whole circumference at ε = 0 (grid module docs, "Groove edges"): the film
+/// is uniform (h = c), the Couette flux has no divergence and the pressure falls linearly across
+/// each land, from p_feed at the groove's edge to ambient at the bearing's end, so the side
+/// leakage is the Poiseuille flow of the two lands, Q = 2 · 2πR c³ p_feed / (12 μ l) with
+/// l = (L − b)/2, whatever the grid. The edge lies at an arbitrary place between two rows on
+/// each grid here (the first-generation rule, which put the groove's pressure on the outermost
+/// row inside it, was off by −6.4 %, −0.18 %, −5.0 %, −2.7 % on the first four grids); the
+/// discrete answer must be the closed form to the solve tolerance (1e-10 of the flux scale;
+/// 1e-9 relative asked), and off-centre grooves too (two unequal lands).
+#[test]
+fn circumferential_groove_leakage_is_exact_on_every_grid() {
+    let (radius, length, clearance, mu, feed) = (0.02743, 0.018288, 48.9e-6, 0.0268, 2e5);
+    for (n_theta, n_z) in [(60, 15), (120, 31), (120, 32), (120, 45), (64, 20)] {
+        for (center_z, width) in [(0.0, 3.81e-3), (1.3e-3, 2.2e-3), (-2.9e-3, 5.05e-3)] {
+            let mut p = ReynoldsParams::plain(radius, length, clearance, mu);
+            p.grid = GridParams { n_theta, n_z };
+            p.grooves = vec![Groove {
+                center_angle: 0.3,
+                center_z,
+                angular_width: std::f64::consts::TAU,
+                axial_width: width,
+                cutoff_film_fraction: 0.01,
+            }];
+            let mut s = ReynoldsSolver::new(p).unwrap();
+            let sol = s.solve_steady([0.0, 0.0], &conditions(feed)).unwrap();
+            let lands = [
+                0.5 * length + center_z - 0.5 * width,
+                0.5 * length - center_z - 0.5 * width,
+            ];
+            for (side, land) in lands.into_iter().enumerate() {
+                let exact =
+                    std::f64::consts::TAU * radius * clearance.powi(3) * feed / (12.0 * mu * land);
+                let q = sol.side_leakage[side];
+                assert!(
+                    (q / exact - 1.0).abs() <= 1e-9,
+                    "{n_theta} × {n_z}, groove at z {center_z}, width {width}: side {side} \
+                     leakage {q:e} against the closed form {exact:e}"
+                );
+            }
+        }
+    }
+}
+
+/// The film does not depend on where a groove's edges fall between the nodes: at ε = 0 the
+/// problem is invariant under a turn of the groove, so its side leakage and load may vary with
+/// the turn only by the discretization error. Turned by eighths of a cell on 120 × 31, a
+/// 52° × 3.81 mm feed groove (the compressor main bearing's) moved its leakage by 1.4 % and a
+/// 17° × 12 mm one by 3.5 %, their load by 0.5 % and 0.8 % (measured; the first generation's
+/// node rule 4.3 % and 9.8 %, 7.7 % and 8.3 %): asked ≤ 2.5 % and ≤ 5 % for the leakage, ≤ 1.5 %
+/// for the load.
+#[test]
+fn a_groove_turned_within_a_cell_gives_nearly_the_same_film() {
+    let (radius, length, clearance, mu) = (0.02743, 0.018288, 48.9e-6, 0.0268);
+    for (angular_width, axial_width, bound) in [(0.9, 3.81e-3, 0.025), (0.3, 12e-3, 0.05)] {
+        let (mut leak, mut load) = (Vec::new(), Vec::new());
+        for eighth in 0..8 {
+            let mut p = ReynoldsParams::plain(radius, length, clearance, mu);
+            p.grid = GridParams {
+                n_theta: 120,
+                n_z: 31,
+            };
+            let cell = std::f64::consts::TAU / 120.0;
+            p.grooves = vec![Groove {
+                center_angle: 1.0 + eighth as f64 / 8.0 * cell,
+                center_z: 0.0,
+                angular_width,
+                axial_width,
+                cutoff_film_fraction: 0.01,
+            }];
+            let mut s = ReynoldsSolver::new(p).unwrap();
+            let sol = s.solve_steady([0.0, 0.0], &conditions(2e5)).unwrap();
+            leak.push(sol.side_leakage[0] + sol.side_leakage[1]);
+            load.push(sol.load_capacity);
+        }
+        let spread = |v: &[f64]| {
+            let (lo, hi) = v
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+            hi / lo - 1.0
+        };
+        assert!(
+            spread(&leak) <= bound,
+            "groove {angular_width} rad × {axial_width} m: leakage {leak:?} spreads by {:.3e}",
+            spread(&leak)
+        );
+        assert!(
+            spread(&load) <= 0.015,
+            "groove {angular_width} rad × {axial_width} m: load {load:?} spreads by {:.3e}",
+            spread(&load)
+        );
+    }
+}
