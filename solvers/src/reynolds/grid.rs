@@ -146,12 +146,14 @@ impl Grid {
         for (g, groove) in params.grooves.iter().enumerate() {
             grid.mark_groove(g, groove);
         }
-        grid.set_groove_edge_factors(&params.grooves);
         if params.supply == SupplyModel::AxialLineAtMaxGap {
             for j in 1..n_z - 1 {
                 grid.kind[j] = NodeKind::SupplyLine;
             }
         }
+        // After the supply line, which holds ambient pressure at its own nodes even where it
+        // crosses a groove: only faces between a groove node and an unknown one get a factor.
+        grid.set_groove_edge_factors(&params.grooves);
         grid.set_residual_weights();
         Ok(grid)
     }
@@ -327,4 +329,143 @@ pub(crate) fn wrap_angle(a: f64) -> f64 {
         x -= 2.0 * PI;
     }
     x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reynolds::GridParams;
+
+    fn params(grooves: Vec<Groove>, supply: SupplyModel) -> ReynoldsParams {
+        let mut p = ReynoldsParams::plain(0.025, 0.02, 40e-6, 0.02);
+        p.grid = GridParams {
+            n_theta: 72,
+            n_z: 22,
+        };
+        p.grooves = grooves;
+        p.supply = supply;
+        p
+    }
+
+    fn groove(center_angle: f64, center_z: f64, angular_width: f64, axial_width: f64) -> Groove {
+        Groove {
+            center_angle,
+            center_z,
+            angular_width,
+            axial_width,
+            cutoff_film_fraction: 0.01,
+        }
+    }
+
+    /// Every face between an unknown node and a groove node carries share · spacing / d, with
+    /// d the distance from the unknown node to the groove's edge and the share the overlap of
+    /// the face with the groove along the edge, both measured here from the node coordinates
+    /// and the rectangle; every other face carries 1; every unknown lies more than half a
+    /// spacing outside the rectangle and every groove node less.
+    #[test]
+    fn groove_edge_factors_follow_the_rectangle() {
+        // Edges at arbitrary places between the nodes (5° spacing, 1 mm cells).
+        let g = groove(0.7, 0.0013, 0.43, 0.0071);
+        let grid = Grid::new(&params(vec![g.clone()], SupplyModel::Grooves), 0.0).unwrap();
+        let (nt, nz) = (grid.n_theta, grid.n_z);
+        let dx = grid.radius * grid.d_theta;
+        let outside = |k: usize| {
+            let dth = wrap_angle(grid.theta(k / nz) - g.center_angle).abs();
+            let dzz = (grid.z(k % nz) - g.center_z).abs();
+            (dth - 0.5 * g.angular_width, dzz - 0.5 * g.axial_width)
+        };
+        let mut edge_faces = 0;
+        for i in 0..nt {
+            let ie = (i + 1) % nt;
+            for j in 1..nz - 1 {
+                let k = i * nz + j;
+                let (ot, oz) = outside(k);
+                match grid.kind[k] {
+                    NodeKind::Groove(_) => {
+                        assert!(ot < 0.5 * grid.d_theta && oz < 0.5 * grid.dz, "node {k}")
+                    }
+                    NodeKind::Unknown => {
+                        assert!(ot > 0.5 * grid.d_theta - 1e-12 || oz > 0.5 * grid.dz - 1e-12)
+                    }
+                    _ => {}
+                }
+                // East face.
+                let ke = ie * nz + j;
+                let expect = match (grid.kind[k], grid.kind[ke]) {
+                    (NodeKind::Unknown, NodeKind::Groove(_))
+                    | (NodeKind::Groove(_), NodeKind::Unknown) => {
+                        let ku = if grid.kind[k] == NodeKind::Unknown {
+                            k
+                        } else {
+                            ke
+                        };
+                        let d = grid.radius * outside(ku).0;
+                        let (lo, hi) = (grid.z(j) - 0.5 * grid.dz, grid.z(j) + 0.5 * grid.dz);
+                        let (glo, ghi) = (
+                            g.center_z - 0.5 * g.axial_width,
+                            g.center_z + 0.5 * g.axial_width,
+                        );
+                        let share = ((hi.min(ghi) - lo.max(glo)) / grid.dz).clamp(0.0, 1.0);
+                        edge_faces += 1;
+                        share * dx / d
+                    }
+                    _ => 1.0,
+                };
+                assert!(
+                    (grid.theta_face_factor[k] - expect).abs() <= 1e-12 * expect,
+                    "east face of ({i}, {j}): {} against {expect}",
+                    grid.theta_face_factor[k]
+                );
+                // North face.
+                if j + 2 < nz {
+                    let expect = match (grid.kind[k], grid.kind[k + 1]) {
+                        (NodeKind::Unknown, NodeKind::Groove(_))
+                        | (NodeKind::Groove(_), NodeKind::Unknown) => {
+                            let ku = if grid.kind[k] == NodeKind::Unknown {
+                                k
+                            } else {
+                                k + 1
+                            };
+                            let d = outside(ku).1;
+                            let th = wrap_angle(grid.theta(i) - g.center_angle);
+                            let (lo, hi) = (th - 0.5 * grid.d_theta, th + 0.5 * grid.d_theta);
+                            let (glo, ghi) = (-0.5 * g.angular_width, 0.5 * g.angular_width);
+                            let share =
+                                ((hi.min(ghi) - lo.max(glo)) / grid.d_theta).clamp(0.0, 1.0);
+                            edge_faces += 1;
+                            share * grid.dz / d
+                        }
+                        _ => 1.0,
+                    };
+                    assert!(
+                        (grid.z_face_factor[k] - expect).abs() <= 1e-12 * expect,
+                        "north face of ({i}, {j}): {} against {expect}",
+                        grid.z_face_factor[k]
+                    );
+                }
+            }
+        }
+        assert!(edge_faces > 20, "the groove has edges ({edge_faces} faces)");
+        // Between half and three halves of a spacing from the edge: factors in (0, 2].
+        for f in grid.theta_face_factor.iter().chain(&grid.z_face_factor) {
+            assert!(*f > 0.0 && *f <= 2.0 + 1e-12, "{f}");
+        }
+    }
+
+    /// A supply line through a groove holds ambient pressure at its own nodes: no face of a
+    /// supply-line node carries a groove factor (the factors are set after the line).
+    #[test]
+    fn a_supply_line_through_a_groove_takes_no_groove_factor() {
+        let g = groove(0.0, 0.0, 0.43, 0.0071);
+        let grid = Grid::new(&params(vec![g], SupplyModel::AxialLineAtMaxGap), 0.0).unwrap();
+        let (nt, nz) = (grid.n_theta, grid.n_z);
+        for j in 1..nz - 1 {
+            assert_eq!(grid.kind[j], NodeKind::SupplyLine);
+            // Column 0's east face, column nt − 1's east face (into column 0), its north face.
+            for k in [j, (nt - 1) * nz + j] {
+                assert_eq!(grid.theta_face_factor[k], 1.0, "row {j}");
+            }
+            assert_eq!(grid.z_face_factor[j], 1.0, "row {j}");
+        }
+    }
 }
