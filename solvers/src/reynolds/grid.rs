@@ -231,8 +231,9 @@ impl Grid {
     }
 
     /// Marks the interior nodes within half a node spacing of the groove's rectangle (module
-    /// docs, "Groove edges"); if that catches no node (a groove next to an end), the node
-    /// nearest to its centre.
+    /// docs, "Groove edges"); if that catches no node (in effect only for a groove centred
+    /// beyond the bearing's ends: the rows' cells tile the length, the columns' the circle), the node nearest to
+    /// its centre.
     fn mark_groove(&mut self, g: usize, groove: &Groove) {
         let mut any = false;
         let tol = 1e-9;
@@ -260,9 +261,10 @@ impl Grid {
 
     /// [`Grid::theta_face_factor`] and [`Grid::z_face_factor`] on the faces between an unknown
     /// node and a groove node: the spacing over the distance d from the unknown node to the
-    /// groove's edge (module docs, "Groove edges"). d is at least half a spacing by the
-    /// marking rule of [`Grid::mark_groove`] (a quarter is the floor for the nearest-node
-    /// fallback), so the factor lies in [2/3, 2] (at most 4).
+    /// groove's edge (module docs, "Groove edges"), times the share of the face that borders
+    /// the groove. d lies between half and three halves of a spacing by the marking rule of
+    /// [`Grid::mark_groove`] (a quarter is the floor for the nearest-node fallback) and the
+    /// share in (0, 1], so the factor lies in (0, 2] (at most 4 with the fallback).
     fn set_groove_edge_factors(&mut self, grooves: &[Groove]) {
         let (nt, nz) = (self.n_theta, self.n_z);
         let dx = self.radius * self.d_theta;
