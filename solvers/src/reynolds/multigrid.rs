@@ -61,10 +61,50 @@
 //! at 240 × 61 with the real steady switch, though FGMRES still converged); widening the coarse
 //! space to the cavitated nodes next to full ones was worse (×118 per cycle). With the cavity
 //! masked out, the coarse problems are the pressure block with the cavity as a zero-correction
-//! boundary, whose Galerkin operators behave (the θ-mass of the z-part, [¼ 3/2 ¼] ⊗ A_z, makes
-//! them not M-matrices, but their symmetric part stays positive definite), and the cavity is
-//! relaxed by the circumferential line sweep, which solves the θ-transport of each line
-//! exactly. Without a switch (`None`) every unknown is coarsened.
+//! boundary (a no-flux one at reformation fronts, next section), whose Galerkin operators
+//! behave (the θ-mass of the z-part, [¼ 3/2 ¼] ⊗ A_z, makes them not M-matrices, but their
+//! symmetric part stays positive definite), and the cavity is relaxed by the circumferential
+//! line sweep, which solves the θ-transport of each line exactly. Without a switch (`None`) every unknown is coarsened.
+//!
+//! # Reformation fronts
+//!
+//! Where the cavity ends upstream of a full node — a reformation front, the cavitated node m
+//! just upstream (in the Couette direction) of the full node k — the two rows couple both
+//! ways with very different weights: row k takes the Couette inflow of m's content,
+//! A\[k,m\] = −(U/2) h Δz (a Couette-sized entry), and row m takes the pressure flux of k,
+//! A\[m,k\] = −β h³ Δz/(12 μ Δx) (a β-sized entry), against m's Couette-sized diagonal A\[m,m\]
+//! = (U/2) h Δz (+ V h/Δt in a time step). Eliminating m (row m solved for y_m) leaves on k
+//!
+//! ```text
+//!   A'[k,k] = A[k,k] − A[k,m] A[m,k] / A[m,m]  ≥  A[k,k] − |A[m,k]|
+//! ```
+//!
+//! — in a steady film exactly the pressure coupling of the face k–m taken off k's diagonal: a
+//! pressure perturbation of k pushes film into the cavitated cell m, which carries it straight
+//! back into k. For the pressure block the front is a *no-flux* boundary, not the zero-pressure
+//! one that masking m out suggests. Two places of the cycle use that:
+//!
+//! - **Smoother.** Each such m is *attached* to its k ([`MgLevel::attached_to`]: the θ-neighbour
+//!   with A\[k,m\] A\[m,k\] ≠ 0; the Couette direction gives at most one) and the zebra sweep of
+//!   k's axial lines solves the block of the line and its attached nodes: the line factors hold
+//!   A'\[k,k\], the line's right-hand side t_k − (A\[k,m\]/A\[m,m\]) t_m, then y_m += (t_m −
+//!   A\[m,k\] δy_k)/A\[m,m\]. Row k is then exact after the sweep, as every row of a solved line
+//!   (so the defect after the zebra stays zero on the odd lines); row m is exact against its
+//!   other neighbours' values before the sweep. Across the seam of an odd ring, where k and m
+//!   are both even columns of one half, nothing is attached.
+//! - **Coarse space.** The first coarse level is the Galerkin product of the finest operator
+//!   with A'\[k,k\] on those diagonals ([`MgLevel::eliminate_attached`]), so the coarse
+//!   problems see the front as the no-flux boundary it is.
+//!
+//! A'\[k,k\] stays ≥ the sum of k's other off-diagonals (A\[m,m\] ≥ |A\[k,m\]|: the same face's
+//! Couette flux, plus the time term), so the attached lines stay diagonally dominant M-matrix
+//! lines. Found by the error the old cycle left (the dominant eigenvector of the stationary
+//! V-cycle at the converged steady cavity of the ε = 0.8 compressor film): all of it on the
+//! strip of full columns between a reformation front and the feed groove's upstream edge
+//! (1 / 2 / 3 columns on 60 × 15 / 120 × 31 / 240 × 61), its contraction 0.09 / 0.53 / 0.55
+//! per cycle; with the smoother only 0.09 / 0.10 / 0.48; with both 0.091 / 0.102 / 0.108
+//! (tests `v_cycle_contraction_at_the_converged_cavity_is_grid_independent`,
+//! `attached_cavitated_nodes_are_solved_with_their_axial_line`).
 //!
 //! A vanishing line pivot or a singular coarsest matrix is reported as
 //! [`ReynoldsError::LinearSolve`], a non-finite coarsest solution as
@@ -137,12 +177,12 @@
 //! Stationary V-cycle contraction ≈ 0.1 per cycle on the full film, independent of the grid.
 //! FGMRES iterations for a 1e-10 solve from the Dirichlet start, ε = 0.8 compressor bearing,
 //! 60×15 / 120×31 / 240×61: steady full film 7 / 7 / 7; 1° step, full 7 / 7 / 8; 1° step with
-//! the diverging half cavitated 7 / 7 / 8; a 1° step at its converged cavity 7 / 8 / 9; the
-//! steady film at its converged cavity 7 / 9 / 12 (×1.7, the known limit: the slow mode sits on the full nodes of the reformation front next to the
-//! groove, where a cavitated row outside the coarse space fixes the pressure of its full
-//! neighbour). Inside the inverse solver (inverse_timing, Krylov iterations per film step,
-//! several solves of mixed tolerance each): 5.6 / 7.1 / 9.5 against the ADI
-//! preconditioner's 17.1 / 38.4 / 80.4.
+//! the diverging half cavitated 7 / 7 / 7; a 1° step at its converged cavity 7 / 7 / 8; the
+//! steady film at its converged cavity 7 / 7 / 7 (7 / 8 / 9 and 7 / 9 / 12 before the
+//! reformation-front coupling above). Inside the inverse solver (inverse_timing, Krylov
+//! iterations per film step, several solves of mixed tolerance each, most of them loose):
+//! 3.7 / 4.7 / 6.2 (3.7 / 4.8 / 6.6 before) against the ADI preconditioner's 17.1 / 38.4 /
+//! 80.4 (measured 2026-11-24, before the later passes over the film step).
 //!
 //! References: A. A. Lubrecht, W. E. ten Napel, R. Bosma, "Multigrid, an alternative method for
 //! calculating film thickness and pressure profiles in elastohydrodynamically lubricated line
@@ -340,6 +380,23 @@ impl<T: Real> Stencil9<T> {
                 + c8[j] * xe_n[j];
             yl[j] = bl[j] - s;
         }
+    }
+
+    /// b_k − (A x)_k of the single row k.
+    fn defect_at(&self, k: usize, x: &[T], b: &[T]) -> T {
+        let (nt, nz) = (self.nt, self.nz);
+        let (i, j) = (k / nz, k % nz);
+        let mut s = T::ZERO;
+        for di in -1..=1isize {
+            let base = wrap(i, di, nt) * nz;
+            for dj in -1..=1isize {
+                let jj = j as isize + dj;
+                if (0..nz as isize).contains(&jj) {
+                    s += self.c[at(di, dj)][k] * x[base + jj as usize];
+                }
+            }
+        }
+        b[k] - s
     }
 
     #[inline(always)]
@@ -566,6 +623,31 @@ struct MgLevel {
     y: Vec<Work>,
     line_rhs: Vec<Work>,
     line_sol: Vec<Work>,
+    /// Finest level: the cavitated nodes attached to a full node of each zebra half's axial
+    /// lines (module docs, "Reformation fronts"), and their defects during a sweep.
+    attached: [Vec<Attached>; 2],
+    attached_defect: Vec<Work>,
+    /// The diagonals [`MgLevel::eliminate_attached`] changed, to restore.
+    saved_diagonals: Vec<(usize, f64)>,
+}
+
+/// A cavitated node m whose row couples it to the full node k of an axial line in both
+/// directions (the Couette inflow A[k,m] of a reformation front and the β-sized pressure flux
+/// A[m,k]): the zebra sweep solves m with k's line (module docs, "Reformation fronts").
+#[derive(Debug, Clone, Copy)]
+struct Attached {
+    k: usize,
+    m: usize,
+    /// The slot of k in its zebra half's interleaved line staging.
+    slot: usize,
+    /// A[k,m] A[m,k] / A[m,m], taken off k's diagonal (f64, as the line factors are built).
+    schur: f64,
+    /// A[k,m] / A[m,m].
+    km_over_mm: Work,
+    /// A[m,k].
+    mk: Work,
+    /// 1 / A[m,m].
+    inv_mm: Work,
 }
 
 fn line_error(level: usize, what: &str, e: crate::tridiagonal::TridiagonalError) -> ReynoldsError {
@@ -603,7 +685,7 @@ impl MgLevel {
         let mut sup = vec![0.0; half];
         for parity in 0..2 {
             let lines = self.lines_of(parity);
-            self.stage_axial(parity, 0..lines, &mut sub, &mut diag, &mut sup);
+            self.stage_axial(level, parity, 0..lines, &mut sub, &mut diag, &mut sup);
             let m = lines * nz;
             self.axial64[parity]
                 .factor_dirichlet(nz, lines, &sub[..m], &diag[..m], &sup[..m])
@@ -619,8 +701,11 @@ impl MgLevel {
 
     /// The axial lines `lanes` of one zebra `parity` (line l is column i = 2 l + parity) into
     /// the interleaved staging of the line factorization (row j of line l at j · lines + l).
+    /// On the finest level a node's diagonal carries the Schur complement of the cavitated
+    /// nodes attached to it (module docs, "Reformation fronts").
     fn stage_axial(
         &self,
+        level: usize,
         parity: usize,
         lanes: impl Iterator<Item = usize>,
         sub: &mut [f64],
@@ -628,6 +713,7 @@ impl MgLevel {
         sup: &mut [f64],
     ) {
         let (nz, lines) = (self.a.nz, self.lines_of(parity));
+        let mut staged = vec![false; if level == 0 { lines } else { 0 }];
         for l in lanes {
             let i = 2 * l + parity;
             for j in 0..nz {
@@ -636,7 +722,104 @@ impl MgLevel {
                 diag[t] = self.a.c[C][k];
                 sup[t] = self.a.c[N][k];
             }
+            if level == 0 {
+                staged[l] = true;
+            }
         }
+        if level == 0 {
+            for at in &self.attached[parity] {
+                if staged[at.slot % lines] {
+                    diag[at.slot] -= at.schur;
+                }
+            }
+        }
+    }
+
+    /// The full node of another zebra half that the cavitated node m is attached to: its
+    /// θ-neighbour k with A[k,m] A[m,k] ≠ 0 (the Couette inflow from m into k and the pressure
+    /// flux from k into m: k is m's downstream neighbour at a reformation front). None for a
+    /// full or Dirichlet node, or when both θ-neighbours qualify (which one direction of the
+    /// Couette flow excludes), or across the seam of an odd ring (both columns even).
+    fn attached_to(&self, m: usize) -> Option<usize> {
+        let (nt, nz) = (self.a.nt, self.a.nz);
+        if self.mask[m] != 0.0 || self.a.c[C][m].is_nan() || self.a.c[C][m] <= 0.0 {
+            return None;
+        }
+        let (i, j) = (m / nz, m % nz);
+        let mut found = None;
+        // (direction from m to k, row m's entry for it, row k's entry for m)
+        for (d, o_mk, o_km) in [(-1isize, W, E), (1, E, W)] {
+            let ik = wrap(i, d, nt);
+            let k = ik * nz + j;
+            if ik % 2 == i % 2 || self.mask[k] != 1.0 {
+                continue;
+            }
+            if self.a.c[o_mk][m] * self.a.c[o_km][k] != 0.0 {
+                if found.is_some() {
+                    return None;
+                }
+                found = Some((k, o_mk, o_km));
+            }
+        }
+        found.map(|(k, _, _)| k)
+    }
+
+    /// The finest operator with every attached cavitated node eliminated into its full node's
+    /// diagonal, A'\[k,k\] = A\[k,k\] − A\[k,m\] A\[m,k\] / A\[m,m\] (module docs, "Reformation
+    /// fronts"): what the first coarse level is built from. In place; undone, to the bit, by
+    /// [`MgLevel::restore_attached`].
+    fn eliminate_attached(&mut self) {
+        self.saved_diagonals.clear();
+        for at in self.attached.iter().flatten() {
+            self.saved_diagonals.push((at.k, self.a.c[C][at.k]));
+            self.a.c[C][at.k] -= at.schur;
+        }
+    }
+
+    /// Undoes [`MgLevel::eliminate_attached`].
+    fn restore_attached(&mut self) {
+        for &(k, v) in self.saved_diagonals.iter().rev() {
+            self.a.c[C][k] = v;
+        }
+        self.saved_diagonals.clear();
+    }
+
+    /// The finest level's attachments, per zebra half of k (from `a` and `mask`).
+    fn collect_attached(&mut self) {
+        let (nt, nz) = (self.a.nt, self.a.nz);
+        for v in &mut self.attached {
+            v.clear();
+        }
+        for m in 0..nt * nz {
+            // Full and Dirichlet nodes (most of them) leave at the first test.
+            if self.mask[m] != 0.0 {
+                continue;
+            }
+            let Some(k) = self.attached_to(m) else {
+                continue;
+            };
+            let (ik, j) = (k / nz, k % nz);
+            let parity = ik % 2;
+            let (o_km, o_mk) = if wrap(ik, -1, nt) * nz + j == m {
+                (W, E)
+            } else {
+                (E, W)
+            };
+            let mm = self.a.c[C][m];
+            let slot = j * self.lines_of(parity) + ik / 2;
+            self.attached[parity].push(Attached {
+                k,
+                m,
+                slot,
+                schur: self.a.c[o_km][k] * self.a.c[o_mk][m] / mm,
+                km_over_mm: Work::from_f64(self.a.c[o_km][k] / mm),
+                mk: Work::from_f64(self.a.c[o_mk][m]),
+                inv_mm: Work::from_f64(1.0 / mm),
+            });
+        }
+        let most = self.attached[0].len().max(self.attached[1].len());
+        self.attached_defect.clear();
+        self.attached_defect.resize(most, 0.0);
     }
 
     /// [`MgLevel::factor`] for a level whose operator and mask changed only in the θ-columns
@@ -682,7 +865,14 @@ impl MgLevel {
             if lanes.is_empty() {
                 continue;
             }
-            self.stage_axial(parity, lanes.iter().copied(), &mut sub, &mut diag, &mut sup);
+            self.stage_axial(
+                level,
+                parity,
+                lanes.iter().copied(),
+                &mut sub,
+                &mut diag,
+                &mut sup,
+            );
             let m = lines * nz;
             self.axial64[parity]
                 .refactor_lanes(&sub[..m], &diag[..m], &sup[..m], &lanes)
@@ -755,6 +945,13 @@ impl MgLevel {
                 self.line_rhs[j * lines + l] = self.t[i * nz + j];
             }
         }
+        // The attached cavitated nodes eliminated into their lines (block Gauss–Seidel of the
+        // line with them; module docs, "Reformation fronts").
+        for (q, at) in self.attached[parity].iter().enumerate() {
+            let t = self.aw.defect_at(at.m, &self.x, &self.b);
+            self.attached_defect[q] = t;
+            self.line_rhs[at.slot] -= at.km_over_mm * t;
+        }
         let m = lines * nz;
         self.axial[parity]
             .solve(&self.line_rhs[..m], &mut self.line_sol[..m])
@@ -764,6 +961,10 @@ impl MgLevel {
             for j in 0..nz {
                 self.x[i * nz + j] += self.line_sol[j * lines + l];
             }
+        }
+        for (q, at) in self.attached[parity].iter().enumerate() {
+            let dk = self.line_sol[at.slot];
+            self.x[at.m] += (self.attached_defect[q] - at.mk * dk) * at.inv_mm;
         }
         debug_assert!(nt >= 2);
         Ok(())
@@ -995,8 +1196,18 @@ impl Multigrid {
                 }
             }
             rows.extend((0..nz).filter(|&j| row_changed[j]));
+            f.collect_attached();
         }
-        let mut changed = vec![columns.to_vec()];
+        // A finest column's line diagonals and coarsening operator read the attachments of its
+        // θ-neighbours (`MgLevel::stage_axial`, `MgLevel::eliminate_attached`): the columns
+        // next to a changed one are refactored and coarsened again too.
+        let mut changed0 = columns.to_vec();
+        for i in (0..nt).filter(|&i| columns[i]) {
+            changed0[wrap(i, -1, nt)] = true;
+            changed0[wrap(i, 1, nt)] = true;
+        }
+        let mut changed = vec![changed0];
+        self.levels[0].eliminate_attached();
         for l in 1..depth {
             let (fine, coarse) = self.levels.split_at_mut(l);
             let (f, c) = (&fine[l - 1], &mut coarse[0]);
@@ -1026,8 +1237,12 @@ impl Multigrid {
             for ic in (0..cnt).filter(|&ic| coarse_changed[ic]) {
                 galerkin_column(&f.a, &f.mask, &c.mask, &mut c.a, ic);
             }
+            if l == 1 {
+                fine[0].restore_attached();
+            }
             changed.push(coarse_changed);
         }
+        self.levels[0].restore_attached();
         for l in 0..depth - 1 {
             let level_rows: &[usize] = if l == 0 { &rows } else { &[] };
             self.levels[l].refactor_columns(l, &changed[l], level_rows)?;
@@ -1058,12 +1273,20 @@ impl Multigrid {
         let mask = &mut self.levels[0].mask;
         mask.clear();
         mask.extend((0..grid.len()).map(|k| fine_mask(grid, switch, k)));
+        self.levels[0].collect_attached();
+        // The first coarse level from the operator with the attached nodes eliminated.
+        self.levels[0].eliminate_attached();
         for l in 1..depth {
             let (fine, coarse) = self.levels.split_at_mut(l);
             let (f, c) = (&fine[l - 1], &mut coarse[0]);
             coarse_mask(f.a.nt, f.a.nz, &f.mask, &mut c.mask);
             galerkin(&f.a, &f.mask, &c.mask, &mut c.a);
+            if l == 1 {
+                fine[0].restore_attached();
+            }
         }
+        // (A single-level hierarchy has no Galerkin product: nothing was restored yet.)
+        self.levels[0].restore_attached();
         for l in 0..depth - 1 {
             self.levels[l].factor(l)?;
         }
