@@ -739,8 +739,9 @@ impl MgLevel {
     /// θ-neighbour k with A[k,m] A[m,k] ≠ 0 (the Couette inflow from m into k and the pressure
     /// flux from k into m: k is m's downstream neighbour at a reformation front). None for a
     /// full or Dirichlet node, or when both θ-neighbours qualify (which one direction of the
-    /// Couette flow excludes), or across the seam of an odd ring (both columns even).
-    fn attached_to(&self, m: usize) -> Option<usize> {
+    /// Couette flow excludes), or across the seam of an odd ring (both columns even). With k:
+    /// the stencil entries of row k for m and of row m for k.
+    fn attached_to(&self, m: usize) -> Option<(usize, usize, usize)> {
         let (nt, nz) = (self.a.nt, self.a.nz);
         if self.mask[m] != 0.0 || self.a.c[C][m].is_nan() || self.a.c[C][m] <= 0.0 {
             return None;
@@ -758,10 +759,10 @@ impl MgLevel {
                 if found.is_some() {
                     return None;
                 }
-                found = Some((k, o_mk, o_km));
+                found = Some((k, o_km, o_mk));
             }
         }
-        found.map(|(k, _, _)| k)
+        found
     }
 
     /// The finest operator with every attached cavitated node eliminated into its full node's
@@ -791,20 +792,12 @@ impl MgLevel {
             v.clear();
         }
         for m in 0..nt * nz {
-            // Full and Dirichlet nodes (most of them) leave at the first test.
-            if self.mask[m] != 0.0 {
-                continue;
-            }
-            let Some(k) = self.attached_to(m) else {
+            // Full and Dirichlet nodes (most of them) leave at its first test.
+            let Some((k, o_km, o_mk)) = self.attached_to(m) else {
                 continue;
             };
             let (ik, j) = (k / nz, k % nz);
             let parity = ik % 2;
-            let (o_km, o_mk) = if wrap(ik, -1, nt) * nz + j == m {
-                (W, E)
-            } else {
-                (E, W)
-            };
             let mm = self.a.c[C][m];
             let slot = j * self.lines_of(parity) + ik / 2;
             self.attached[parity].push(Attached {
