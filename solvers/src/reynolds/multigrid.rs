@@ -104,7 +104,11 @@
 //! (1 / 2 / 3 columns on 60 × 15 / 120 × 31 / 240 × 61), its contraction 0.09 / 0.53 / 0.55
 //! per cycle; with the smoother only 0.09 / 0.10 / 0.48; with both 0.091 / 0.102 / 0.108
 //! (tests `v_cycle_contraction_at_the_converged_cavity_is_grid_independent`,
-//! `attached_cavitated_nodes_are_solved_with_their_axial_line`).
+//! `attached_cavitated_nodes_are_solved_with_their_axial_line`). Tried before on the same
+//! slow mode and dropped: the full nodes next to the cavity masked out of the coarse space
+//! (steady 8 / 10 / 13 iterations — it moves the zero-pressure boundary, the wrong condition,
+//! by a cell); more smoothing (a second circumferential sweep, V(2,2)), which lowered the
+//! counts by one or two but not their growth, at 20–60 % more work per cycle.
 //!
 //! A vanishing line pivot or a singular coarsest matrix is reported as
 //! [`ReynoldsError::LinearSolve`], a non-finite coarsest solution as
