@@ -52,15 +52,16 @@ impl Where {
         Ok(())
     }
 
-    /// Newton could not converge this step.
-    fn newton_failed(self, iterations: usize, residual: f64, eps: [f64; 2]) -> InverseError {
+    /// Newton could not converge this step; `last` is its last iterate.
+    fn newton_failed<S>(self, iterations: usize, last: &Iterate<S>) -> InverseError {
         InverseError::NewtonFailed {
             time: self.time,
             crank_angle_deg: self.crank_angle_deg,
             cycle: self.cycle,
             iterations,
-            residual,
-            eccentricity_ratio: eps,
+            residual: last.res,
+            eccentricity_ratio: last.eps,
+            cavitated_fraction: last.response.cavitated_fraction,
         }
     }
 }
@@ -1345,7 +1346,7 @@ impl Stepper<'_> {
                     continue;
                 }
                 if fresh {
-                    return Err(target.at.newton_failed(iterations, cur.res, cur.eps));
+                    return Err(target.at.newton_failed(iterations, &cur));
                 }
                 self.jac.valid = false;
                 continue;
@@ -1516,10 +1517,7 @@ impl Stepper<'_> {
         let params = self.params;
         self.stats.newton += iterations;
         if problem.target.may_split || cur.res > params.accept_tolerance {
-            return Err(problem
-                .target
-                .at
-                .newton_failed(iterations, cur.res, cur.eps));
+            return Err(problem.target.at.newton_failed(iterations, &cur));
         }
         problem.check_outputs(&cur)?;
         self.stats.stalled += 1;
@@ -1730,6 +1728,9 @@ mod tests {
             film_force,
             min_film_thickness: 1.0 - norm(e),
             power_loss: 1.0,
+            // A stand-in that differs from iterate to iterate (the error of a failed step must
+            // report its last iterate's).
+            cavitated_fraction: norm(e).min(1.0),
             ..Default::default()
         }
     }
@@ -2247,6 +2248,23 @@ mod tests {
         };
         let mut film = short_reach(100.0, 0.2);
         let err = solve_inverse(&strict, &load, &mut film, &mut NoObserver).unwrap_err();
-        assert!(matches!(err, InverseError::NewtonFailed { .. }), "{err}");
+        let InverseError::NewtonFailed {
+            eccentricity_ratio,
+            cavitated_fraction,
+            ..
+        } = err
+        else {
+            panic!("not a Newton failure: {err}");
+        };
+        // The film's state where Newton stopped, for the diagnosis (a starved film: methods.md).
+        assert_eq!(
+            cavitated_fraction,
+            norm(eccentricity_ratio).min(1.0),
+            "{err}"
+        );
+        assert!(err.to_string().contains(&format!(
+            "where {:.1} % of the film area is cavitated",
+            100.0 * cavitated_fraction
+        )));
     }
 }

@@ -419,10 +419,14 @@ pub enum InverseError {
         min_film_thickness: f64,
         residual: f64,
     },
-    /// Newton did not converge in the step.
+    /// Newton did not converge in the step. `cavitated_fraction` is the cavitated share of the
+    /// film area at the last iterate (the film model's [`super::FilmResponse`]): a film close
+    /// to empty there (a starved film, e.g. at a load reversal) cannot hold a massless journal,
+    /// and the quasi-static inverse problem has no solution at a bounded journal speed
+    /// (docs/methods.md, "Inverse solver with the Reynolds film").
     #[error(
-        "Newton did not converge at {when} after {iterations} iterations: residual {residual:.3e}, last ε = ({:.6}, {:.6})",
-        eccentricity_ratio[0], eccentricity_ratio[1], when = When(*time, *crank_angle_deg, *cycle)
+        "Newton did not converge at {when} after {iterations} iterations: residual {residual:.3e}, last ε = ({:.6}, {:.6}), where {:.1} % of the film area is cavitated",
+        eccentricity_ratio[0], eccentricity_ratio[1], 100.0 * cavitated_fraction, when = When(*time, *crank_angle_deg, *cycle)
     )]
     NewtonFailed {
         time: f64,
@@ -431,6 +435,7 @@ pub enum InverseError {
         iterations: usize,
         residual: f64,
         eccentricity_ratio: [f64; 2],
+        cavitated_fraction: f64,
     },
     /// The film model failed at a trial ε.
     #[error(
@@ -485,12 +490,13 @@ mod tests {
             iterations: 3,
             residual: 0.5,
             eccentricity_ratio: [0.1, 0.2],
+            cavitated_fraction: 0.9713,
         };
         assert_eq!(
             at(0).to_string(),
             "Newton did not converge at crank angle 271.00° of the run-in (8.240000e-3 s before \
              the first cycle, quasi-load ramping up) after 3 iterations: residual 5.000e-1, last \
-             ε = (0.100000, 0.200000)"
+             ε = (0.100000, 0.200000), where 97.1 % of the film area is cavitated"
         );
         assert!(
             at(2)
