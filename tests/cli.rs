@@ -407,6 +407,78 @@ fn the_flores_feed_hole_case_becomes_periodic_without_a_stall() {
     assert_eq!(int("periodic"), 1);
 }
 
+/// The shipped Flores feed-hole case under 3× its load (the supply unchanged) is starved at
+/// the load's sign change (173.6°): the journal vacates more clearance than the feed hole can
+/// fill, and the massless inverse problem loses its solution there. The rigorous method fails
+/// at that step with an error that names it and says how empty the film is (docs/methods.md,
+/// "A film that runs empty"); the mobility method beside it still runs and its results are
+/// written. With the ends flooded at 0.1 MPa above the cavitation pressure, oil enters from the
+/// sides and the same load runs.
+#[test]
+fn a_starved_film_at_a_load_reversal_is_named_and_flooded_ends_carry_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = std::fs::read_to_string(root().join("cases/flores2006_load.csv")).unwrap();
+    let mut lines = table.lines();
+    let mut scaled = vec![lines.next().unwrap().to_string()];
+    for line in lines {
+        let (angle, load) = line.split_once(',').unwrap();
+        scaled.push(format!(
+            "{angle},{}",
+            3.0 * load.trim().parse::<f64>().unwrap()
+        ));
+    }
+    std::fs::write(dir.path().join("load_x3.csv"), scaled.join("\n") + "\n").unwrap();
+    let case = std::fs::read_to_string(root().join("cases/flores2006_feed_hole.toml")).unwrap();
+    let case = case
+        .replace("flores2006_load.csv", "load_x3.csv")
+        .replace("name = \"flores2006_feed_hole\"", "name = \"starved\"");
+    assert!(case.contains("load_x3.csv") && case.contains("name = \"starved\""));
+    std::fs::write(dir.path().join("starved.toml"), &case).unwrap();
+    let out_dir = dir.path().join("out");
+    let out = run_into(dir.path().join("starved.toml"), &out_dir, &[]);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    let message = stderr
+        .lines()
+        .find(|l| l.contains("rigorous method failed:"))
+        .unwrap_or_else(|| panic!("no error line: {stderr}"));
+    assert!(
+        message.contains("rigorous method: Newton did not converge"),
+        "{message}"
+    );
+    let angle: f64 = message
+        .split("crank angle ")
+        .nth(1)
+        .and_then(|r| r.split('°').next())
+        .and_then(|a| a.parse().ok())
+        .unwrap_or_else(|| panic!("no crank angle: {message}"));
+    assert!((173.6..=180.0).contains(&angle), "{message}");
+    let cavitated: f64 = message
+        .split("where ")
+        .nth(1)
+        .and_then(|r| r.split(" % of the film area is cavitated").next())
+        .and_then(|a| a.parse().ok())
+        .unwrap_or_else(|| panic!("no cavitated share: {message}"));
+    assert!(cavitated > 90.0, "{message}");
+    // The mobility method's results are kept.
+    let summary = std::fs::read_to_string(out_dir.join("starved_summary.csv")).unwrap();
+    assert!(summary.contains("mobility"), "{summary}");
+
+    let flooded = case
+        .replace("name = \"starved\"", "name = \"flooded\"")
+        .replace(
+            "[lubricant]\n",
+            "[lubricant]\nambient_pressure_pa = 1.0e5\n",
+        )
+        .replace("mobility = true", "mobility = false");
+    assert!(
+        flooded.contains("ambient_pressure_pa = 1.0e5") && flooded.contains("mobility = false")
+    );
+    std::fs::write(dir.path().join("flooded.toml"), flooded).unwrap();
+    let out = run_into(dir.path().join("flooded.toml"), &out_dir, &[]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+}
+
 /// `batch --jobs 100000` runs (the pool is capped at the cores and the cases) instead of
 /// spawning thousands of threads and panicking (issue 12, item 2).
 #[test]
