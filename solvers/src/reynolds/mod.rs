@@ -974,13 +974,22 @@ impl ReynoldsSolver {
         } else {
             self.step_core(input, bdf2, backward_euler, (psi0, g0))?
         };
+        // A Crank–Nicolson step (its old level has a net outflow) reports its friction at the
+        // step's midpoint (outputs module docs).
+        let old_pressure = (old.outflow.is_some() && !self.trial)
+            .then(|| outputs::state_pressure(&self.params, &self.grid, state));
+        let friction = match (&old_pressure, self.trial) {
+            (_, true) => outputs::Friction::Skip,
+            (Some(p), false) => outputs::Friction::AtMidpoint(p),
+            (None, false) => outputs::Friction::AtNewLevel,
+        };
         let mut sol = outputs::film_solution(
             &self.params,
             &input.conditions,
             input.eccentricity_ratio,
             &core,
             &self.viscosity_field,
-            !self.trial,
+            friction,
         );
         if self.deformation.is_some() {
             deformed_min_film(&mut sol, &core);
@@ -1457,7 +1466,7 @@ impl ReynoldsSolver {
             eccentricity_ratio,
             &core,
             &self.viscosity_field,
-            true,
+            outputs::Friction::AtNewLevel,
         );
         if self.deformation.is_some() {
             deformed_min_film(&mut sol, &core);
