@@ -485,23 +485,32 @@ fn a_starved_film_at_a_load_reversal_is_named_and_flooded_ends_carry_it() {
         message.contains("rigorous method: Newton did not converge"),
         "{message}"
     );
-    let angle: f64 = message
-        .split("crank angle ")
-        .nth(1)
-        .and_then(|r| r.split('°').next())
-        .and_then(|a| a.parse().ok())
-        .unwrap_or_else(|| panic!("no crank angle: {message}"));
+    // The number between `before` and `after` in the message.
+    let number = |before: &str, after: &str| -> f64 {
+        message
+            .split(before)
+            .nth(1)
+            .and_then(|r| r.split(after).next())
+            .and_then(|a| a.parse().ok())
+            .unwrap_or_else(|| panic!("no number after '{before}': {message}"))
+    };
+    let angle = number("crank angle ", "°");
     assert!((173.6..=180.0).contains(&angle), "{message}");
-    let cavitated: f64 = message
-        .split("where ")
-        .nth(1)
-        .and_then(|r| r.split(" % of the film area is cavitated").next())
-        .and_then(|a| a.parse().ok())
-        .unwrap_or_else(|| panic!("no cavitated share: {message}"));
+    let cavitated = number("where ", " % of the film area is cavitated");
     assert!(cavitated > 90.0, "{message}");
-    // The mobility method's results are kept.
+    // The mobility method's results are kept: its cycle minimum of h_min beside the empty
+    // rigorous column (quantity, units, long_name, rigorous, mobility, …).
     let summary = std::fs::read_to_string(out_dir.join("starved_summary.csv")).unwrap();
-    assert!(summary.contains("mobility"), "{summary}");
+    let row: Vec<&str> = summary
+        .lines()
+        .find(|l| l.starts_with("min_film_thickness_min,"))
+        .unwrap_or_else(|| panic!("no h_min row: {summary}"))
+        .split(',')
+        .collect();
+    assert_eq!(row[3], "", "{summary}");
+    let mobility_h_min: f64 = row[4].parse().unwrap();
+    assert!(mobility_h_min > 0.0, "{summary}");
+    assert!(out_dir.join("starved.h5").exists());
 
     let flooded = case
         .replace("name = \"starved\"", "name = \"flooded\"")

@@ -978,10 +978,10 @@ impl ReynoldsSolver {
         // step's midpoint (outputs module docs).
         let old_pressure = (old.outflow.is_some() && !self.trial)
             .then(|| outputs::state_pressure(&self.params, &self.grid, state));
-        let friction = match (&old_pressure, self.trial) {
-            (_, true) => outputs::Friction::Skip,
-            (Some(p), false) => outputs::Friction::AtMidpoint(p),
-            (None, false) => outputs::Friction::AtNewLevel,
+        let friction = match &old_pressure {
+            _ if self.trial => outputs::Friction::Skip,
+            Some(p) => outputs::Friction::AtMidpoint(p),
+            None => outputs::Friction::AtNewLevel,
         };
         let mut sol = outputs::film_solution(
             &self.params,
