@@ -11,9 +11,11 @@
 //!   bench (multigrid) with a constant viscosity and with \[Benasciutti2012\]'s Vogel oil under a linear
 //!   temperature rise 40 → 80 °C over the converging half (a viscosity field, α = 0), in one
 //!   run: issue 14 asks the field to cost ≤ 1.5× the constant.
-//! - `reynolds/warm_step/120x31`: one backward-Euler step of a grooved bearing whirling at
+//! - `reynolds/warm_step/120x31`: one BDF2 step (the default scheme) of a grooved bearing whirling at
 //!   ε = 0.6 (1° of whirl per step), warm-started from the previous step's film (the default
-//!   linear solver, multigrid-Krylov).
+//!   linear solver, multigrid-Krylov). The groove is centred on the mid-plane, so the solver
+//!   works on the half grid (`reynolds::grid` docs, "Mirror symmetry"); `warm_step_whole_length`
+//!   is the same step on the whole grid (`ReynoldsSolver::new_whole_length`), in one run.
 use criterion::Criterion;
 use jbearing_solvers::reynolds::{
     GridParams, Groove, LinearSolver, OperatingConditions, ReynoldsParams, ReynoldsSolver,
@@ -112,7 +114,15 @@ pub fn bench(c: &mut Criterion) {
         axial_width: 0.03,
         cutoff_film_fraction: 0.01,
     }];
-    let mut s = ReynoldsSolver::new(p).expect("params");
+    // The groove is centred on the mid-plane: the solver works on the half grid (the
+    // default); the whole-length solve of the same step beside it.
+    let solvers = [
+        ("warm_step/120x31", ReynoldsSolver::new(p.clone())),
+        (
+            "warm_step_whole_length/120x31",
+            ReynoldsSolver::new_whole_length(p),
+        ),
+    ];
     let cond = OperatingConditions {
         journal_speed: 100.0,
         bearing_speed: 0.0,
@@ -124,22 +134,25 @@ pub fn bench(c: &mut Criterion) {
         let a = whirl * dt * n as f64;
         [0.6 * a.cos(), 0.6 * a.sin()]
     };
-    let mut state = s.initial_state(eps(0));
-    for n in 1..=360 {
+    for (name, s) in solvers {
+        let mut s = s.expect("params");
+        let mut state = s.initial_state(eps(0));
+        for n in 1..=360 {
+            let input = StepInput {
+                eccentricity_ratio: eps(n),
+                dt,
+                conditions: cond.clone(),
+            };
+            state = s.solve_step(&state, &input).expect("run-in").1;
+        }
         let input = StepInput {
-            eccentricity_ratio: eps(n),
+            eccentricity_ratio: eps(361),
             dt,
             conditions: cond.clone(),
         };
-        state = s.solve_step(&state, &input).expect("run-in").1;
+        group.bench_function(name, |b| {
+            b.iter(|| black_box(s.solve_step(black_box(&state), &input).expect("step")))
+        });
     }
-    let input = StepInput {
-        eccentricity_ratio: eps(361),
-        dt,
-        conditions: cond.clone(),
-    };
-    group.bench_function("warm_step/120x31", |b| {
-        b.iter(|| black_box(s.solve_step(black_box(&state), &input).expect("step")))
-    });
     group.finish();
 }

@@ -409,9 +409,8 @@ fn assemble_columns(
             old_outflow,
         } = time
         {
-            let v = grid.radius * grid.d_theta * grid.dz;
             for k in rows.clone() {
-                let c = v / dt;
+                let c = grid.cell_area(k % nz) / dt;
                 st.p[k] += c * lv.h[k];
                 st.rhs[k] += c * (old_content[k] - lv.h[k]);
                 if let Some(d) = old_outflow {
@@ -523,8 +522,8 @@ pub(crate) fn mass_residual(
         old_outflow,
     } = time
     {
-        let v = grid.radius * grid.d_theta * grid.dz;
         for k in 0..grid.len() {
+            let v = grid.cell_area(k % nz);
             out[k] += v / dt * (lv.h[k] * (1.0 + content[k]) - old_content[k]);
             if let Some(d) = old_outflow {
                 out[k] += 0.5 * d[k];
@@ -586,8 +585,8 @@ pub(crate) fn residual_eccentricity_derivative(
         }
     }
     if let Some(dt) = dt {
-        let v = grid.radius * grid.d_theta * grid.dz;
         for k in 0..grid.len() {
+            let v = grid.cell_area(k % nz);
             out[k] += v / dt * dh_node[k] * (1.0 + content[k]);
         }
     }

@@ -61,7 +61,42 @@
 //! on 120 × 31 when the groove was turned by fractions of a cell (now 1.4 %), 2.1 % on 240 × 61
 //! (now 0.46 %). The Couette transport out of a groove node still carries the node's film
 //! fraction across the whole face of its cell (the groove's oil, φ = 1 — exact where the film
-//! beside the groove is full, a first-order error at the groove's corners where it is not).
+//! beside the groove is full, a first-order error at the groove's corners where it is not).//!
+//! # Mirror symmetry
+//!
+//! The film thickness and the viscosity depend on θ only (aligned journal; the elastic gap
+//! change and the thermal viscosity are functions of θ), both ends are at the one ambient
+//! pressure and the supply line runs the whole length; so when every groove is centred on the
+//! mid-plane ([`mirror_symmetric`]) the discrete problem maps onto itself under z → −z, and so
+//! does its (unique: M-matrix, `discretization` module docs) solution. The solver then works
+//! on the half z ≤ 0 ([`Grid::new_half`]) and mirrors the answer — the same discrete film in
+//! about half the work:
+//!
+//! ```text
+//!   whole, n_z odd (31)          half (17 rows)              whole, n_z even (32)     half (17)
+//!   j = 30  E  (z = +L/2)                                    j = 31  E
+//!   ...                                                      ...
+//!   j = 16  ·                    j = 16  X closed row        j = 16  ·                j = 16 X
+//!   j = 15  ·  z = 0 (mid row)   j = 15  · half cell Δz/2    ----------- z = 0 (a face) ------
+//!   j = 14  ·                    j = 14  ·                   j = 15  ·                j = 15 ·
+//!   ...                          ...                         ...                      ...
+//!   j = 0   E  (z = −L/2)        j = 0   E                   j = 0   E                j = 0  E
+//! ```
+//!
+//! The mid-plane is a line of symmetry: no flux crosses it. With n_z odd the mid row's cell
+//! straddles it; the half grid owns the lower half of that cell (width Δz/2 in its θ-fluxes,
+//! its time term and its area weight, [`Grid::row_width`], [`Grid::cell_area`]): its mass
+//! balance is half the whole cell's, whose north and south z-fluxes are equal by symmetry.
+//! With n_z even the mid-plane is the face between two rows and the half grid ends at it.
+//! Either way the last row X is a closed Dirichlet row whose z-face carries no flux (its face
+//! factor is 0), so every loop over the grid stays as it is, at one row's extra cost. The
+//! integrals of the half (force, flows, content, torques, power) are doubled, the side leakage
+//! through z = +L/2 is that through z = −L/2, and fields and states are mirrored to the whole
+//! grid on the way out ([`Grid::unfold`]) and folded on the way in ([`Grid::fold`]; the net
+//! outflow of a node, a quantity of its cell, with the mid row's half:
+//! [`Grid::fold_per_cell`]). Test: `the_half_grid_of_a_symmetric_bearing_is_the_whole_grids_film`
+//! (every output and state of steady films and of five steps of each time scheme, both
+//! parities, equal to the whole grid's to < 1e-9 of their scale).
 
 use std::f64::consts::PI;
 
@@ -105,27 +140,66 @@ pub(crate) struct Grid {
     /// "Groove edges").
     pub theta_face_factor: Vec<f64>,
     pub z_face_factor: Vec<f64>,
+    /// The mid-plane reduction (module docs, "Mirror symmetry"): None for the whole length.
+    pub mirror: Option<Mirror>,
+}
+
+/// How a half grid ([`Grid::new_half`]) maps onto the whole one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Mirror {
+    /// n_z of the whole grid.
+    pub full_n_z: usize,
+    /// The row on the mid-plane, whose cell the half grid owns half of (odd `full_n_z`); None
+    /// when the mid-plane is the face between two rows (even `full_n_z`).
+    pub mid_row: Option<usize>,
 }
 
 impl Grid {
     pub fn new(params: &ReynoldsParams, theta0: f64) -> Result<Self, ReynoldsError> {
+        Self::build(params, theta0, false)
+    }
+
+    /// The half grid z ≤ 0 of a bearing that is symmetric about its mid-plane (module docs,
+    /// "Mirror symmetry"; [`mirror_symmetric`] says when).
+    pub fn new_half(params: &ReynoldsParams, theta0: f64) -> Result<Self, ReynoldsError> {
+        Self::build(params, theta0, true)
+    }
+
+    fn build(params: &ReynoldsParams, theta0: f64, half: bool) -> Result<Self, ReynoldsError> {
         let n_theta = params.grid.n_theta;
-        let n_z = params.grid.n_z;
-        if n_theta < 8 || n_z < 3 {
+        let full_n_z = params.grid.n_z;
+        if n_theta < 8 || full_n_z < 3 {
             return Err(ReynoldsError::InvalidParameter {
                 name: "grid",
-                value: (n_theta * 1000 + n_z) as f64,
+                value: (n_theta * 1000 + full_n_z) as f64,
                 reason: "needs n_theta ≥ 8 and n_z ≥ 3 (value shown as n_theta·1000 + n_z)",
             });
         }
         let d_theta = 2.0 * PI / n_theta as f64;
-        let dz = params.length / (n_z - 2) as f64;
+        let dz = params.length / (full_n_z - 2) as f64;
+        // The half grid: the rows of z ≤ 0 (the mid row among them when n_z is odd), then one
+        // closed row standing for the mid-plane (module docs, "Mirror symmetry").
+        let (n_z, mirror) = if half && full_n_z >= 4 {
+            let mid_row = (full_n_z % 2 == 1).then_some((full_n_z - 1) / 2);
+            (
+                full_n_z / 2 + 1 + usize::from(mid_row.is_some()),
+                Some(Mirror { full_n_z, mid_row }),
+            )
+        } else {
+            (full_n_z, None)
+        };
         let mut kind = vec![NodeKind::Unknown; n_theta * n_z];
         let mut area_weight = vec![params.radius * d_theta * dz; n_theta * n_z];
         for i in 0..n_theta {
             for j in [0, n_z - 1] {
                 kind[i * n_z + j] = NodeKind::End;
                 area_weight[i * n_z + j] = 0.0;
+            }
+            if let Some(Mirror {
+                mid_row: Some(c), ..
+            }) = mirror
+            {
+                area_weight[i * n_z + c] *= 0.5;
             }
         }
         let mut grid = Self {
@@ -142,6 +216,7 @@ impl Grid {
             dirichlet_neighbour: Default::default(),
             theta_face_factor: vec![1.0; n_theta * n_z],
             z_face_factor: vec![1.0; n_theta * n_z],
+            mirror,
         };
         for (g, groove) in params.grooves.iter().enumerate() {
             grid.mark_groove(g, groove);
@@ -154,8 +229,78 @@ impl Grid {
         // After the supply line, which holds ambient pressure at its own nodes even where it
         // crosses a groove: only faces between a groove node and an unknown one get a factor.
         grid.set_groove_edge_factors(&params.grooves);
+        if grid.mirror.is_some() {
+            // No flux through the mid-plane: the closed row's face carries nothing.
+            for i in 0..n_theta {
+                grid.z_face_factor[i * n_z + n_z - 2] = 0.0;
+            }
+        }
         grid.set_residual_weights();
         Ok(grid)
+    }
+
+    /// A field of the whole grid (`[i · n_z + j]`, `full.len()` = n_θ × full n_z) on this
+    /// half grid: rows j ≤ the mid-plane as they are, the closed row from the whole grid's
+    /// last row (an end row: its Dirichlet value). Without a mirror a copy.
+    pub fn fold<T: Copy>(&self, full: &[T]) -> Vec<T> {
+        let Some(m) = self.mirror else {
+            return full.to_vec();
+        };
+        let (nz, fz) = (self.n_z, m.full_n_z);
+        let mut out = Vec::with_capacity(self.len());
+        for i in 0..self.n_theta {
+            out.extend_from_slice(&full[i * fz..i * fz + nz - 1]);
+            out.push(full[i * fz + fz - 1]);
+        }
+        out
+    }
+
+    /// A field of this grid on the whole grid: row j of the whole grid is row
+    /// min(j, n_z − 1 − j) of the half (its mirror image; the closed row is never read).
+    /// Without a mirror a copy.
+    pub fn unfold<T: Copy>(&self, half: &[T]) -> Vec<T> {
+        let Some(m) = self.mirror else {
+            return half.to_vec();
+        };
+        let (nz, fz) = (self.n_z, m.full_n_z);
+        let mut out = Vec::with_capacity(self.n_theta * fz);
+        for i in 0..self.n_theta {
+            out.extend((0..fz).map(|j| half[i * nz + j.min(fz - 1 - j)]));
+        }
+        out
+    }
+
+    /// [`Self::fold`] for a quantity of a node's cell (a flow), of which the half grid's mid
+    /// row owns half.
+    pub fn fold_per_cell(&self, full: &[f64]) -> Vec<f64> {
+        let mut out = self.fold(full);
+        self.scale_mid_row(&mut out, 0.5);
+        out
+    }
+
+    /// [`Self::unfold`] for a quantity of a node's cell (the inverse of [`Self::fold_per_cell`]).
+    pub fn unfold_per_cell(&self, half: &[f64]) -> Vec<f64> {
+        let mut h = half.to_vec();
+        self.scale_mid_row(&mut h, 2.0);
+        self.unfold(&h)
+    }
+
+    fn scale_mid_row(&self, v: &mut [f64], factor: f64) {
+        if let Some(Mirror {
+            mid_row: Some(c), ..
+        }) = self.mirror
+        {
+            for i in 0..self.n_theta {
+                v[i * self.n_z + c] *= factor;
+            }
+        }
+    }
+
+    /// The factor from this grid's integrals (force, flows, power, content) to the whole
+    /// bearing's: 2 on a half grid, else 1.
+    #[inline]
+    pub fn mirror_factor(&self) -> f64 {
+        if self.mirror.is_some() { 2.0 } else { 1.0 }
     }
 
     /// [`Grid::unknown_weight`] and [`Grid::dirichlet_neighbour`] from the node kinds.
@@ -204,20 +349,53 @@ impl Grid {
         if j == 0 {
             -0.5 * self.length
         } else if j + 1 == self.n_z {
+            if self.mirror.is_some() {
+                0.0
+            } else {
+                0.5 * self.length
+            }
+        } else {
+            -0.5 * self.length + (j as f64 - 0.5) * self.dz
+        }
+    }
+
+    /// z of row j of the whole grid (of which a half grid holds the rows z ≤ 0).
+    pub fn whole_z(&self, j: usize) -> f64 {
+        let n_z = self.mirror.map_or(self.n_z, |m| m.full_n_z);
+        if j == 0 {
+            -0.5 * self.length
+        } else if j + 1 == n_z {
             0.5 * self.length
         } else {
             -0.5 * self.length + (j as f64 - 0.5) * self.dz
         }
     }
 
-    /// Axial width of the cells of row j (0 on the end rows, which are boundary points).
+    /// Axial width of the cells of row j (0 on the end rows, which are boundary points, and
+    /// on a half grid's closed row; Δz/2 on its mid row).
     #[inline]
     pub fn row_width(&self, j: usize) -> f64 {
         if j == 0 || j + 1 == self.n_z {
             0.0
+        } else if self.is_mid_row(j) {
+            0.5 * self.dz
         } else {
             self.dz
         }
+    }
+
+    /// The volume per unit film thickness of a node's cell in row j, R Δθ Δz (half that on a
+    /// half grid's mid row): what the time term multiplies h φ by. (The end rows keep R Δθ Δz:
+    /// their rows are Dirichlet rows, overwritten.)
+    #[inline]
+    pub fn cell_area(&self, j: usize) -> f64 {
+        let a = self.radius * self.d_theta * self.dz;
+        if self.is_mid_row(j) { 0.5 * a } else { a }
+    }
+
+    #[inline]
+    fn is_mid_row(&self, j: usize) -> bool {
+        matches!(self.mirror, Some(Mirror { mid_row: Some(c), .. }) if c == j)
     }
 
     /// Distance from row j to row j + 1 (Δz/2 next to an end).
@@ -322,6 +500,15 @@ fn overlap(offset: f64, cell: f64, width: f64) -> f64 {
     let lo = (offset - 0.5 * cell).max(-0.5 * width);
     let hi = (offset + 0.5 * cell).min(0.5 * width);
     ((hi - lo) / cell).clamp(0.0, 1.0)
+}
+
+/// Whether the bearing is symmetric about its mid-plane z = 0, so that the film of a time
+/// step or a steady solve is too (module docs, "Mirror symmetry"): the film thickness and the
+/// viscosity depend on θ only (aligned journal, [`super::FilmDeformation`] is a function of θ),
+/// both ends are at the one ambient pressure, the supply line runs the whole length, and every
+/// groove is centred on the mid-plane (exactly: `center_z == 0`).
+pub(crate) fn mirror_symmetric(params: &ReynoldsParams) -> bool {
+    params.grooves.iter().all(|g| g.center_z == 0.0)
 }
 
 /// Wraps an angle into (−π, π].

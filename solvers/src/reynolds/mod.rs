@@ -619,6 +619,9 @@ pub struct ReynoldsSolver {
     /// The step under way is a trial ([`ReynoldsSolver::solve_trial_step_to`]): its friction
     /// outputs are not evaluated.
     trial: bool,
+    /// Solve the half z ≤ 0 of a bearing symmetric about its mid-plane (`grid` module docs,
+    /// "Mirror symmetry"): set by [`ReynoldsSolver::new`] when the parameters are.
+    half: bool,
 }
 
 /// The deformed film's thinnest node (the rigid c(1 − |ε|) of `film_solution` is no longer it).
@@ -716,7 +719,23 @@ struct Linearization {
 }
 
 impl ReynoldsSolver {
+    /// A solver for `params`. A bearing symmetric about its mid-plane (every groove centred on
+    /// it: the film is then symmetric too) is solved on the half z ≤ 0 of its grid and the
+    /// answer mirrored (`grid` module docs, "Mirror symmetry"): the same discrete solution, in
+    /// about half the work. Every field and integral a solve returns, and every state it takes
+    /// and gives, is the whole grid's.
     pub fn new(params: ReynoldsParams) -> Result<Self, ReynoldsError> {
+        let half = grid::mirror_symmetric(&params);
+        Self::build(params, half)
+    }
+
+    /// [`Self::new`] solving the whole length even for a symmetric bearing (what the mirror
+    /// reduction is checked against).
+    pub fn new_whole_length(params: ReynoldsParams) -> Result<Self, ReynoldsError> {
+        Self::build(params, false)
+    }
+
+    fn build(params: ReynoldsParams, half: bool) -> Result<Self, ReynoldsError> {
         let positive = [
             ("radius", params.radius),
             ("length", params.length),
@@ -763,7 +782,11 @@ impl ReynoldsSolver {
         if let Some(m) = &params.viscosity_model {
             m.validate()?;
         }
-        let grid = std::sync::Arc::new(Grid::new(&params, 0.0)?);
+        let grid = std::sync::Arc::new(if half {
+            Grid::new_half(&params, 0.0)?
+        } else {
+            Grid::new(&params, 0.0)?
+        });
         let n = grid.len();
         Ok(Self {
             viscosity_field: vec![params.viscosity; n],
@@ -781,7 +804,57 @@ impl ReynoldsSolver {
             deformation: None,
             step_tolerance: None,
             trial: false,
+            half,
         })
+    }
+
+    /// `state` on the solver's grid: itself, or folded onto the half grid (its rows z ≤ 0).
+    fn internal_state<'a>(&self, state: &'a FilmState) -> std::borrow::Cow<'a, FilmState> {
+        let grid = &self.grid;
+        if grid.mirror.is_none() {
+            return std::borrow::Cow::Borrowed(state);
+        }
+        let shape = (grid.n_theta, grid.n_z);
+        let field = |a: &Array2<f64>| {
+            Array2::from_shape_vec(shape, grid.fold(&flat(a))).expect("grid shape")
+        };
+        std::borrow::Cow::Owned(FilmState {
+            density_ratio: field(&state.density_ratio),
+            full_film: Array2::from_shape_vec(shape, grid.fold(&flat(&state.full_film)))
+                .expect("grid shape"),
+            net_outflow: state.net_outflow.as_ref().map(|a| {
+                Array2::from_shape_vec(shape, grid.fold_per_cell(&flat(a))).expect("grid shape")
+            }),
+            previous_level: state.previous_level.as_ref().map(|(a, dt)| (field(a), *dt)),
+            eccentricity_ratio: state.eccentricity_ratio,
+            deformation: state.deformation.clone(),
+            boundary_flow: state.boundary_flow.clone(),
+            boundary_volume: state.boundary_volume.clone(),
+            previous_boundary_volume: state.previous_boundary_volume.clone(),
+        })
+    }
+
+    /// A state of the solver's grid on the whole grid (the inverse of
+    /// [`Self::internal_state`]).
+    fn external_state(&self, state: FilmState) -> FilmState {
+        let grid = &self.grid;
+        if grid.mirror.is_none() {
+            return state;
+        }
+        let shape = (self.params.grid.n_theta, self.params.grid.n_z);
+        let field = |a: &Array2<f64>| {
+            Array2::from_shape_vec(shape, grid.unfold(&flat(a))).expect("grid shape")
+        };
+        FilmState {
+            density_ratio: field(&state.density_ratio),
+            full_film: Array2::from_shape_vec(shape, grid.unfold(&flat(&state.full_film)))
+                .expect("grid shape"),
+            net_outflow: state.net_outflow.as_ref().map(|a| {
+                Array2::from_shape_vec(shape, grid.unfold_per_cell(&flat(a))).expect("grid shape")
+            }),
+            previous_level: state.previous_level.as_ref().map(|(a, dt)| (field(a), *dt)),
+            ..state
+        }
     }
 
     /// Adds a gap change to the film of the following solves (None: the rigid film). With a
@@ -813,7 +886,9 @@ impl ReynoldsSolver {
     /// z of the grid rows (m, from the mid-plane): the end rows are the bearing ends, the
     /// others the centres of their cells.
     pub fn z_nodes(&self) -> Vec<f64> {
-        (0..self.params.grid.n_z).map(|j| self.grid.z(j)).collect()
+        (0..self.params.grid.n_z)
+            .map(|j| self.grid.whole_z(j))
+            .collect()
     }
 
     /// A full film at ambient pressure (φ = 1 + (p_amb − p_cav)/β, g = 1) at ε.
@@ -927,6 +1002,19 @@ impl ReynoldsSolver {
     ) -> Result<(FilmSolution, FilmState), ReynoldsError> {
         self.check_step(state, input)?;
         self.set_grid(0.0)?;
+        if let Some(f) = start
+            && (f.density_ratio.len() != state.density_ratio.len()
+                || f.full_film.len() != state.full_film.len())
+        {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "start",
+                value: f.density_ratio.len() as f64,
+                reason: "start fields do not match the grid size",
+            });
+        }
+        let state = &*self.internal_state(state);
+        let start_internal = start.map(|f| self.internal_state(f));
+        let start = start_internal.as_deref();
         let old = self.old_time_level(state, input);
         let (mut psi0, g0) = start_fields(state, start, self.grid.len())?;
         let backward_euler = TimeTerm::Step {
@@ -1011,7 +1099,7 @@ impl ReynoldsSolver {
         new_state.boundary_volume = boundary_volume_after(state, input.dt, &flows, scheme);
         new_state.previous_boundary_volume = Some(state.boundary_volume.clone());
         new_state.boundary_flow = flows;
-        Ok((sol, new_state))
+        Ok((sol, self.external_state(new_state)))
     }
 
     /// A time step needs the groove supply model, a positive finite Δt, a state of this grid
@@ -1029,7 +1117,7 @@ impl ReynoldsSolver {
                 reason: "must be positive and finite",
             });
         }
-        let n = self.grid.len();
+        let n = self.params.grid.n_theta * self.params.grid.n_z;
         if state.density_ratio.len() != n || state.full_film.len() != n {
             return Err(ReynoldsError::InvalidParameter {
                 name: "state",
@@ -1048,6 +1136,8 @@ impl ReynoldsSolver {
     /// The film content h φ of `state` at its nodes (m; h with the state's deformation): what
     /// a BDF2 step takes as the level before ([`FilmState::previous_level`]).
     pub fn film_content(&self, state: &FilmState) -> Array2<f64> {
+        let shape = state.density_ratio.dim();
+        let state = &*self.internal_state(state);
         let h = FilmThickness::new(
             &self.grid,
             self.params.clearance,
@@ -1059,8 +1149,8 @@ impl ReynoldsSolver {
             .iter()
             .zip(state.density_ratio.iter())
             .map(|(h, phi)| h * phi)
-            .collect();
-        Array2::from_shape_vec(state.density_ratio.dim(), content).expect("grid shape")
+            .collect::<Vec<f64>>();
+        Array2::from_shape_vec(shape, self.grid.unfold(&content)).expect("grid shape")
     }
 
     /// What the time scheme takes from the old level: the content hⁿφⁿ, the net outflow Dⁿ
@@ -1159,7 +1249,8 @@ impl ReynoldsSolver {
     fn state_after(&self, core: &Core, input: &StepInput, old_content: Vec<f64>) -> FilmState {
         let mut out = vec![0.0; self.grid.len()];
         discretization::net_outflow(&core.grid, &core.flux_theta, &core.flux_z, &mut out);
-        let shape = (self.params.grid.n_theta, self.params.grid.n_z);
+        // The solver's grid (the half grid's, which the caller unfolds).
+        let shape = (self.grid.n_theta, self.grid.n_z);
         let field = |v: Vec<f64>| Array2::from_shape_vec(shape, v).expect("grid shape");
         FilmState {
             eccentricity_ratio: input.eccentricity_ratio,
@@ -1421,7 +1512,7 @@ impl ReynoldsSolver {
         let grid = &self.grid;
         let nz = grid.n_z;
         let mut force = [0.0; 2];
-        let mut dp = Array2::zeros((grid.n_theta, nz));
+        let mut dp = vec![0.0; grid.len()];
         for i in 0..grid.n_theta {
             let th = grid.theta(i);
             for j in 0..nz {
@@ -1430,11 +1521,14 @@ impl ReynoldsSolver {
                     let d = self.params.bulk_modulus * g[k] * x[k];
                     force[0] -= grid.area_weight[k] * d * th.cos();
                     force[1] -= grid.area_weight[k] * d * th.sin();
-                    dp[[i, j]] = d;
+                    dp[k] = d;
                 }
             }
         }
-        (force, dp)
+        let two = grid.mirror_factor();
+        let shape = (self.params.grid.n_theta, self.params.grid.n_z);
+        let dp = Array2::from_shape_vec(shape, grid.unfold(&dp)).expect("grid shape");
+        ([two * force[0], two * force[1]], dp)
     }
 
     /// The steady film (no squeeze) at ε, from a cold start.
@@ -1609,10 +1703,12 @@ impl ReynoldsSolver {
     }
 
     fn set_grid(&mut self, theta0: f64) -> Result<(), ReynoldsError> {
-        if self.grid.theta0 != theta0
-            || self.grid.len() != self.params.grid.n_theta * self.params.grid.n_z
-        {
-            self.grid = std::sync::Arc::new(Grid::new(&self.params, theta0)?);
+        if self.grid.theta0 != theta0 {
+            self.grid = std::sync::Arc::new(if self.half {
+                Grid::new_half(&self.params, theta0)?
+            } else {
+                Grid::new(&self.params, theta0)?
+            });
         }
         Ok(())
     }
@@ -2242,6 +2338,15 @@ fn start_fields(
         .map(|&f| if f { 1.0 } else { 0.0 })
         .collect();
     Ok((psi0, g0))
+}
+
+/// The elements of a field in its logical order (θ-major, `[i · n_z + j]`), without a copy
+/// when it is stored that way.
+fn flat<T: Copy>(a: &Array2<T>) -> std::borrow::Cow<'_, [T]> {
+    match a.as_slice() {
+        Some(s) => std::borrow::Cow::Borrowed(s),
+        None => std::borrow::Cow::Owned(a.iter().copied().collect()),
+    }
 }
 
 /// σ₀ of the steady solves' pseudo-time shift (module docs).

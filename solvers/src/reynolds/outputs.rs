@@ -67,7 +67,7 @@ pub(crate) fn film_solution(
     friction: Friction<'_>,
 ) -> FilmSolution {
     let grid = &core.grid;
-    let (nt, nz) = (grid.n_theta, grid.n_z);
+    let nt = grid.n_theta;
     let speed = params.radius * (conditions.journal_speed - conditions.bearing_speed);
     let pressure = nodal_pressure(params, core);
     let integrals = PressureIntegrals::new(params, core, &pressure);
@@ -99,14 +99,23 @@ pub(crate) fn film_solution(
         },
     };
 
-    let shape = (nt, nz);
-    let to_arr = |v: Vec<f64>| Array2::from_shape_vec(shape, v).expect("grid shape");
+    // On a half grid (mirror symmetry, `grid` module docs) the integrals are the half
+    // bearing's: the whole bearing has twice each, the same leakage through both ends, and
+    // the fields are the half's and their mirror image.
+    let two = grid.mirror_factor();
+    let side_leakage = match grid.mirror {
+        Some(_) => [flows.side_leakage[0]; 2],
+        None => flows.side_leakage,
+    };
+    let shape = (nt, params.grid.n_z);
+    let to_arr = |v: Vec<f64>| Array2::from_shape_vec(shape, grid.unfold(&v)).expect("grid shape");
     let density: Vec<f64> = core.psi.iter().map(|p| 1.0 + p).collect();
     let fraction: Vec<f64> = density
         .iter()
         .zip(&core.g)
         .map(|(&d, &g)| if g > 0.5 { 1.0 } else { d })
         .collect();
+    let force = [two * force[0], two * force[1]];
     FilmSolution {
         film_force: force,
         load_capacity: force[0].hypot(force[1]),
@@ -116,20 +125,20 @@ pub(crate) fn film_solution(
         max_pressure: integrals.max_pressure,
         max_pressure_location: integrals.max_pressure_location,
         cavitated_fraction: integrals.cavitated_fraction,
-        film_content: integrals.film_content,
-        side_leakage: flows.side_leakage,
-        supply_flow: flows.supply,
-        supply_line_flow: flows.supply_line,
-        recirculated_flow: recirculated_flow(params, core, speed),
-        friction_torque_journal: shear.torque_journal,
-        friction_torque_bearing: shear.torque_bearing,
-        power_loss: shear.power_loss,
+        film_content: two * integrals.film_content,
+        side_leakage,
+        supply_flow: flows.supply.iter().map(|q| two * q).collect(),
+        supply_line_flow: two * flows.supply_line,
+        recirculated_flow: two * recirculated_flow(params, core, speed),
+        friction_torque_journal: two * shear.torque_journal,
+        friction_torque_bearing: two * shear.torque_bearing,
+        power_loss: two * shear.power_loss,
         iterations: core.iterations,
         single_pivots: core.single_pivots,
         linear_iterations: core.linear_iterations,
         residual: core.residual,
         theta: (0..nt).map(|i| grid.theta(i)).collect(),
-        z: (0..nz).map(|j| grid.z(j)).collect(),
+        z: (0..params.grid.n_z).map(|j| grid.whole_z(j)).collect(),
         pressure: to_arr(pressure),
         density_ratio: to_arr(density),
         film_fraction: to_arr(fraction),
@@ -205,8 +214,7 @@ impl PressureIntegrals {
                 }
                 area += w;
                 if grid.kind[k] == NodeKind::Unknown {
-                    out.film_content +=
-                        grid.radius * grid.d_theta * grid.dz * core.h[k] * (1.0 + core.psi[k]);
+                    out.film_content += grid.cell_area(j) * core.h[k] * (1.0 + core.psi[k]);
                 }
                 if core.g[k] < 0.5 {
                     cav_area += w;

@@ -636,7 +636,7 @@ fn krylov_iterations_do_not_grow_with_the_grid() {
 fn converged_steady_cavity(nt: usize, nz: usize) -> (ReynoldsSolver, Stencil, Vec<f64>) {
     let mut s = ReynoldsSolver::new(compressor(LinearSolver::SparseLu, nt, nz)).unwrap();
     let sol = s.solve_steady([0.0, -0.8], &running()).unwrap();
-    let sw: Vec<f64> = sol.switch.iter().copied().collect();
+    let sw: Vec<f64> = s.grid.fold(&sol.switch.iter().copied().collect::<Vec<_>>());
     let system = frozen_system(
         compressor(LinearSolver::MultigridKrylov, nt, nz),
         [0.0, -0.8],
@@ -919,14 +919,16 @@ fn a_hierarchy_updated_in_the_switched_columns_is_the_rebuilt_one() {
         let mut mg = Multigrid::default();
         mg.setup(grid, &st0, Some(&g0)).unwrap();
         let unknown = |k: usize| grid.kind[k] == NodeKind::Unknown;
-        // Flip sets: the seam (columns nt − 1 and 0), the middle, and three spread nodes.
+        // Flip sets: the seam (columns nt − 1 and 0), the middle, and three spread nodes (on
+        // the solver's grid, the half grid of this symmetric bearing: `gz` rows).
+        let gz = grid.n_z;
         let flips: [Vec<usize>; 3] = [
-            vec![(nt - 1) * nz + nz / 2, nz / 3],
-            vec![(nt / 2) * nz + nz / 2],
+            vec![(nt - 1) * gz + gz / 2, gz / 3],
+            vec![(nt / 2) * gz + gz / 2],
             vec![
-                (nt / 4) * nz + 2,
-                (nt / 4 + 1) * nz + 3,
-                (3 * nt / 4) * nz + nz / 2,
+                (nt / 4) * gz + 2,
+                (nt / 4 + 1) * gz + 3,
+                (3 * nt / 4) * gz + gz / 2,
             ],
         ];
         let mut g = g0.clone();
