@@ -722,8 +722,10 @@ impl ReynoldsSolver {
     /// A solver for `params`. A bearing symmetric about its mid-plane (every groove centred on
     /// it: the film is then symmetric too) is solved on the half z ≤ 0 of its grid and the
     /// answer mirrored (`grid` module docs, "Mirror symmetry"): the same discrete solution, in
-    /// about half the work. Every field and integral a solve returns, and every state it takes
-    /// and gives, is the whole grid's.
+    /// about two thirds of the time. Every field and integral a solve returns, and every state
+    /// it takes and gives, is the whole grid's; a state given to such a solver is read on its
+    /// rows z ≤ 0 (the states the solver gives are symmetric; one made by hand that is not
+    /// needs [`Self::new_whole_length`]).
     pub fn new(params: ReynoldsParams) -> Result<Self, ReynoldsError> {
         let half = grid::mirror_symmetric(&params);
         Self::build(params, half)
@@ -814,24 +816,13 @@ impl ReynoldsSolver {
         if grid.mirror.is_none() {
             return std::borrow::Cow::Borrowed(state);
         }
-        let shape = (grid.n_theta, grid.n_z);
-        let field = |a: &Array2<f64>| {
-            Array2::from_shape_vec(shape, grid.fold(&flat(a))).expect("grid shape")
-        };
-        std::borrow::Cow::Owned(FilmState {
-            density_ratio: field(&state.density_ratio),
-            full_film: Array2::from_shape_vec(shape, grid.fold(&flat(&state.full_film)))
-                .expect("grid shape"),
-            net_outflow: state.net_outflow.as_ref().map(|a| {
-                Array2::from_shape_vec(shape, grid.fold_per_cell(&flat(a))).expect("grid shape")
-            }),
-            previous_level: state.previous_level.as_ref().map(|(a, dt)| (field(a), *dt)),
-            eccentricity_ratio: state.eccentricity_ratio,
-            deformation: state.deformation.clone(),
-            boundary_flow: state.boundary_flow.clone(),
-            boundary_volume: state.boundary_volume.clone(),
-            previous_boundary_volume: state.previous_boundary_volume.clone(),
-        })
+        std::borrow::Cow::Owned(remap_state(
+            state,
+            (grid.n_theta, grid.n_z),
+            &|v| grid.fold(v),
+            &|v| grid.fold(v),
+            &|v| grid.fold_per_cell(v),
+        ))
     }
 
     /// A state of the solver's grid on the whole grid (the inverse of
@@ -841,20 +832,13 @@ impl ReynoldsSolver {
         if grid.mirror.is_none() {
             return state;
         }
-        let shape = (self.params.grid.n_theta, self.params.grid.n_z);
-        let field = |a: &Array2<f64>| {
-            Array2::from_shape_vec(shape, grid.unfold(&flat(a))).expect("grid shape")
-        };
-        FilmState {
-            density_ratio: field(&state.density_ratio),
-            full_film: Array2::from_shape_vec(shape, grid.unfold(&flat(&state.full_film)))
-                .expect("grid shape"),
-            net_outflow: state.net_outflow.as_ref().map(|a| {
-                Array2::from_shape_vec(shape, grid.unfold_per_cell(&flat(a))).expect("grid shape")
-            }),
-            previous_level: state.previous_level.as_ref().map(|(a, dt)| (field(a), *dt)),
-            ..state
-        }
+        remap_state(
+            &state,
+            (self.params.grid.n_theta, self.params.grid.n_z),
+            &|v| grid.unfold(v),
+            &|v| grid.unfold(v),
+            &|v| grid.unfold_per_cell(v),
+        )
     }
 
     /// Adds a gap change to the film of the following solves (None: the rigid film). With a
@@ -2338,6 +2322,35 @@ fn start_fields(
         .map(|&f| if f { 1.0 } else { 0.0 })
         .collect();
     Ok((psi0, g0))
+}
+
+/// `state` with its fields carried to another grid of `shape` by `field` (φ and the content
+/// of the level before), `flags` (the switch) and `per_cell` (the net outflow, a quantity of a
+/// node's cell): the fold onto a half grid or the unfold from it.
+fn remap_state(
+    state: &FilmState,
+    shape: (usize, usize),
+    field: &dyn Fn(&[f64]) -> Vec<f64>,
+    flags: &dyn Fn(&[bool]) -> Vec<bool>,
+    per_cell: &dyn Fn(&[f64]) -> Vec<f64>,
+) -> FilmState {
+    let array = |v| Array2::from_shape_vec(shape, v).expect("grid shape");
+    FilmState {
+        eccentricity_ratio: state.eccentricity_ratio,
+        density_ratio: array(field(&flat(&state.density_ratio))),
+        full_film: Array2::from_shape_vec(shape, flags(&flat(&state.full_film)))
+            .expect("grid shape"),
+        net_outflow: state
+            .net_outflow
+            .as_ref()
+            .map(|a| array(per_cell(&flat(a)))),
+        previous_level: (state.previous_level.as_ref())
+            .map(|(a, dt)| (array(field(&flat(a))), *dt)),
+        deformation: state.deformation.clone(),
+        boundary_flow: state.boundary_flow.clone(),
+        boundary_volume: state.boundary_volume.clone(),
+        previous_boundary_volume: state.previous_boundary_volume.clone(),
+    }
 }
 
 /// The elements of a field in its logical order (θ-major, `[i · n_z + j]`), without a copy
