@@ -61,7 +61,8 @@
 //! on 120 × 31 when the groove was turned by fractions of a cell (now 1.4 %), 2.1 % on 240 × 61
 //! (now 0.46 %). The Couette transport out of a groove node still carries the node's film
 //! fraction across the whole face of its cell (the groove's oil, φ = 1 — exact where the film
-//! beside the groove is full, a first-order error at the groove's corners where it is not).//!
+//! beside the groove is full, a first-order error at the groove's corners where it is not).
+//!
 //! # Mirror symmetry
 //!
 //! The film thickness and the viscosity depend on θ only (aligned journal; the elastic gap
@@ -69,8 +70,9 @@
 //! pressure and the supply line runs the whole length; so when every groove is centred on the
 //! mid-plane ([`mirror_symmetric`]) the discrete problem maps onto itself under z → −z, and so
 //! does its (unique: M-matrix, `discretization` module docs) solution. The solver then works
-//! on the half z ≤ 0 ([`Grid::new_half`]) and mirrors the answer — the same discrete film in
-//! about half the work:
+//! on the half z ≤ 0 ([`Grid::new_half`]) and mirrors the answer — the same discrete film on
+//! 17 rows instead of 31 (the default grid), in about two thirds of the time (docs/performance.md,
+//! "Fifteenth look"):
 //!
 //! ```text
 //!   whole, n_z odd (31)          half (17 rows)              whole, n_z even (32)     half (17)
