@@ -20,10 +20,12 @@
 //!
 //! Usage: `cargo run --release -p jbearing-validation --bin inverse_timing [-- [--quick |
 //! --default | --grids] [--repeat N] [--jacobian exact|broyden|differences]
-//! [--linear adi|multigrid|lu] [--write-docs]]`
+//! [--linear adi|multigrid|lu] [--whole-length] [--write-docs]]`
 //! (`--quick`: the 60 × 15 rows only, to check that it runs; `--default`: the 120 × 31, 1° row
 //! only, for before/after comparisons of a change; `--grids`: the three grid-scaling rows at 1°;
-//! `--linear`: the frozen-switch linear solver, default the film's default (ADI-Krylov);
+//! `--linear`: the frozen-switch linear solver, default the film's default (multigrid-Krylov);
+//! `--whole-length`: solve the film on the whole grid although the bearing is symmetric about
+//! its mid-plane (the default solves the half grid: `reynolds::grid` docs, "Mirror symmetry");
 //! `--repeat N`: run every row N times and
 //! report the run with the median time, for a machine shared with other jobs; `--jacobian`:
 //! the inverse Newton's Jacobian, default exact; `--write-docs`: also put the report into
@@ -37,7 +39,7 @@ use jbearing_solvers::inverse::{
     NoObserver, OperatingConditions, RelaxedStep, ReynoldsFilm, solve_inverse,
 };
 use jbearing_solvers::load::{FnLoad, OperatingHistory};
-use jbearing_solvers::reynolds::{FilmState, LinearSolver, TimeScheme};
+use jbearing_solvers::reynolds::{FilmState, LinearSolver, ReynoldsSolver, TimeScheme};
 use jbearing_validation::compressor_main::{FEED, OMEGA, pulse_load, reynolds_params};
 use jbearing_validation::generated_docs::{docs_page, machine, take_report, write_generated_block};
 use jbearing_validation::report;
@@ -153,6 +155,7 @@ fn run(
     step_deg: f64,
     jacobian: JacobianMethod,
     linear: LinearSolver,
+    whole_length: bool,
 ) -> Result<Row> {
     let load = OperatingHistory {
         load: FnLoad {
@@ -165,8 +168,15 @@ fn run(
     };
     let mut reynolds = reynolds_params(TimeScheme::default(), n_theta, n_z);
     reynolds.linear_solver = linear;
+    // The groove is centred on the mid-plane: the film is solved on its half grid unless
+    // `whole_length` (`reynolds::grid` docs, "Mirror symmetry").
+    let inner = if whole_length {
+        ReynoldsFilm::from(ReynoldsSolver::new_whole_length(reynolds)?)
+    } else {
+        ReynoldsFilm::new(reynolds)?
+    };
     let mut film = TimedFilm {
-        inner: ReynoldsFilm::new(reynolds)?,
+        inner,
         film_seconds: 0.0,
         krylov_iterations: 0,
     };
@@ -201,6 +211,7 @@ struct Options {
     linear: LinearSolver,
     repeat: usize,
     jacobian: JacobianMethod,
+    whole_length: bool,
 }
 
 impl Options {
@@ -213,19 +224,21 @@ impl Options {
         let mut rest = args.iter();
         while let Some(a) = rest.next() {
             match a.as_str() {
-                "--quick" | "--default" | "--grids" => {}
+                "--quick" | "--default" | "--grids" | "--whole-length" => {}
                 "--repeat" | "--jacobian" | "--linear" => {
                     rest.next();
                 }
                 other => anyhow::bail!(
                     "unknown argument {other:?} (expected --quick, --default, --grids, --repeat N, \
-                     --jacobian exact|broyden|differences, --linear adi|multigrid|lu, --write-docs)"
+                     --jacobian exact|broyden|differences, --linear adi|multigrid|lu, \
+                     --whole-length, --write-docs)"
                 ),
             }
         }
         let quick = args.iter().any(|a| a == "--quick");
         let default_only = args.iter().any(|a| a == "--default");
         let grids_only = args.iter().any(|a| a == "--grids");
+        let whole_length = args.iter().any(|a| a == "--whole-length");
         let linear = match args.iter().position(|a| a == "--linear") {
             Some(i) => match args.get(i + 1).map(String::as_str) {
                 Some("adi") => LinearSolver::AdiKrylov,
@@ -263,6 +276,7 @@ impl Options {
             linear,
             repeat,
             jacobian,
+            whole_length,
         })
     }
 
@@ -290,11 +304,16 @@ fn main() -> Result<()> {
     let opts = Options::parse()?;
     report!(
         "Machine: {}. Measured: {}. Thread CPU time, one core, release build; {:?} Jacobian; \
-         {:?} linear solver{}.\n",
+         {:?} linear solver; {}{}.\n",
         machine(),
         jiff::Timestamp::now().strftime("%Y-%m-%d %H:%M UTC"),
         opts.jacobian,
         opts.linear,
+        if opts.whole_length {
+            "the whole grid (--whole-length)"
+        } else {
+            "the half grid of the mid-plane symmetry"
+        },
         if opts.repeat > 1 {
             format!("; each row the median of {} runs", opts.repeat)
         } else {
@@ -307,7 +326,7 @@ fn main() -> Result<()> {
     report!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (nt, nz, step) in opts.plan() {
         let mut runs = (0..opts.repeat)
-            .map(|_| run(nt, nz, step, opts.jacobian, opts.linear))
+            .map(|_| run(nt, nz, step, opts.jacobian, opts.linear, opts.whole_length))
             .collect::<Result<Vec<_>>>()?;
         runs.sort_by(|a, b| a.total.total_cmp(&b.total));
         report_row(&runs.swap_remove(opts.repeat / 2));
