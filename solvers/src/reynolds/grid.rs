@@ -348,16 +348,10 @@ impl Grid {
 
     #[inline]
     pub fn z(&self, j: usize) -> f64 {
-        if j == 0 {
-            -0.5 * self.length
-        } else if j + 1 == self.n_z {
-            if self.mirror.is_some() {
-                0.0
-            } else {
-                0.5 * self.length
-            }
+        if self.mirror.is_some() && j + 1 == self.n_z {
+            0.0 // a half grid's closed row stands for the mid-plane
         } else {
-            -0.5 * self.length + (j as f64 - 0.5) * self.dz
+            self.whole_z(j)
         }
     }
 

@@ -986,6 +986,7 @@ impl ReynoldsSolver {
     ) -> Result<(FilmSolution, FilmState), ReynoldsError> {
         self.check_step(state, input)?;
         self.set_grid(0.0)?;
+        // A start of another grid (checked before the fold, which assumes the whole grid).
         if let Some(f) = start
             && (f.density_ratio.len() != state.density_ratio.len()
                 || f.full_film.len() != state.full_film.len())
@@ -1000,7 +1001,7 @@ impl ReynoldsSolver {
         let start_internal = start.map(|f| self.internal_state(f));
         let start = start_internal.as_deref();
         let old = self.old_time_level(state, input);
-        let (mut psi0, g0) = start_fields(state, start, self.grid.len())?;
+        let (mut psi0, g0) = start_fields(state, start);
         let backward_euler = TimeTerm::Step {
             dt: input.dt,
             old_content: &old.content,
@@ -2297,31 +2298,17 @@ struct OldLevel {
     bdf2: Option<(f64, Vec<f64>)>,
 }
 
-/// The Newton start ψ⁰ = φ − 1, g⁰ of a step: the `start` film when given (of this grid's
-/// size `n`), else the old level's.
-fn start_fields(
-    state: &FilmState,
-    start: Option<&FilmState>,
-    n: usize,
-) -> Result<(Vec<f64>, Vec<f64>), ReynoldsError> {
-    let first = match start {
-        Some(f) if f.density_ratio.len() == n && f.full_film.len() == n => f,
-        Some(f) => {
-            return Err(ReynoldsError::InvalidParameter {
-                name: "start",
-                value: f.density_ratio.len() as f64,
-                reason: "start fields do not match the grid size",
-            });
-        }
-        None => state,
-    };
+/// The Newton start ψ⁰ = φ − 1, g⁰ of a step: the `start` film when given (its size checked
+/// against the state's where the step begins), else the old level's.
+fn start_fields(state: &FilmState, start: Option<&FilmState>) -> (Vec<f64>, Vec<f64>) {
+    let first = start.unwrap_or(state);
     let psi0 = first.density_ratio.iter().map(|phi| phi - 1.0).collect();
     let g0 = first
         .full_film
         .iter()
         .map(|&f| if f { 1.0 } else { 0.0 })
         .collect();
-    Ok((psi0, g0))
+    (psi0, g0)
 }
 
 /// `state` with its fields carried to another grid of `shape` by `field` (φ and the content

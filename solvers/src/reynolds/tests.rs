@@ -1333,9 +1333,9 @@ fn a_groove_turned_within_a_cell_gives_nearly_the_same_film() {
 /// field of a solve on it equals the whole-length solve's to the solve tolerance. Both
 /// parities of n_z (a mid row with a half cell, or the mid-plane on a face; 17 and 16, and the
 /// smallest half grids, 5 and 4), a groove fed above and below p_cav (cut off), steady films
-/// with the groove and with the supply line, and five time steps of each scheme — backward Euler, Crank–Nicolson (its old level's net
-/// outflow, a quantity per cell, is folded and unfolded with the mid row's half), BDF2 (the
-/// level before) — each continued from the previous step's state and from a start, with the
+/// with the groove and with the supply line, and five time steps of each scheme — backward
+/// Euler, Crank–Nicolson (its old level's net outflow, a quantity per cell, is folded and
+/// unfolded with the mid row's half), BDF2 (the level before) — each continued from the previous step's state and from a start, with the
 /// film-force Jacobian, a gap response and the film content. The tolerance 1e-7 of each
 /// quantity's scale is three decades above what two solves to the mass residual 1e-10
 /// differ by (measured: < 1e-9) and far below any error of the reduction (a missing mirror
@@ -1493,8 +1493,6 @@ fn the_half_grid_of_a_symmetric_bearing_is_the_whole_grids_film() {
                     let (b, nb) = whole.solve_step(&sb, &input).unwrap();
                     same_solution(&what, &a, &b);
                     same_state(&what, &na, &nb);
-                    // The same step again from a start (the previous answer moved along
-                    // the Jacobian's sensitivities).
                     let ja = half.film_force_jacobian().unwrap();
                     let jb = whole.film_force_jacobian().unwrap();
                     // The Jacobian's and the gap response's linear solves stop at 1e-5 of
@@ -1516,6 +1514,8 @@ fn the_half_grid_of_a_symmetric_bearing_is_the_whole_grids_film() {
                         &rb[0].pressure,
                         1e-4,
                     );
+                    // A nearby step from a start (this answer, moved along the Jacobian's
+                    // sensitivities).
                     let mut nearby = input.clone();
                     nearby.eccentricity_ratio[0] += 0.01;
                     let (a2, _) = half.solve_step_from(&sa, &nearby, Some(&na)).unwrap();
@@ -1572,4 +1572,34 @@ fn a_groove_off_the_mid_plane_keeps_the_whole_grid() {
         "an off-centre groove leaks unequally: {:?}",
         sol.side_leakage
     );
+}
+
+/// A start film of another grid is refused with an error naming it, on the half grid (where
+/// it is checked before the fold) and on the whole one alike.
+#[test]
+fn a_start_of_another_grid_is_named() {
+    let p = grooved(LinearSolver::MultigridKrylov);
+    let mut other = p.clone();
+    other.grid.n_z = 11;
+    let foreign = ReynoldsSolver::new(other)
+        .unwrap()
+        .initial_state([0.5, -0.6]);
+    for mut s in [
+        ReynoldsSolver::new(p.clone()).unwrap(),
+        ReynoldsSolver::new_whole_length(p.clone()).unwrap(),
+    ] {
+        let state = s.initial_state([0.5, -0.6]);
+        let input = StepInput {
+            eccentricity_ratio: [0.5, -0.61],
+            dt: 2e-4,
+            conditions: conditions(2e5),
+        };
+        let err = s
+            .solve_step_from(&state, &input, Some(&foreign))
+            .unwrap_err();
+        assert!(
+            matches!(err, ReynoldsError::InvalidParameter { name: "start", .. }),
+            "{err}"
+        );
+    }
 }
