@@ -331,21 +331,35 @@ fn subtract_and_dot(w: &mut [f64], h: f64, v: &[f64], u: Option<&[f64]>) -> f64 
     sum_of_partials(&acc)
 }
 
-/// Solves A x = rhs for the frozen switch, starting from the `x` given (warm start), to
-/// max |r| ≤ `tolerance` × flux scale: `flux_scale` if given (the semismooth Newton passes the
-/// scale of its nonlinear residual, which a pseudo-time shift must not inflate), else the
-/// stencil's own ([`Stencil::residual`]). `preconditioner` chooses the ADI sweeps or the
-/// multigrid V-cycle; `switch` (g of the frozen system) lets the multigrid keep the cavitated
-/// nodes out of its coarse space (`multigrid` module docs; the ADI ignores it).
-// Crate-internal; the two call sites in `mod.rs` pass every argument explicitly.
-#[allow(clippy::too_many_arguments)]
+/// When [`solve_krylov`] stops.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct KrylovStop {
+    /// max |r| ≤ `tolerance` × flux scale.
+    pub tolerance: f64,
+    /// The flux scale of that test (the semismooth Newton passes the scale of its nonlinear
+    /// residual, which a pseudo-time shift must not inflate); None: the stencil's own
+    /// ([`Stencil::residual`]).
+    pub flux_scale: Option<f64>,
+    /// Krylov iterations allowed.
+    pub max_iterations: usize,
+    /// A semismooth Newton step's look at its answer on the way (`mod.rs`, module docs): once
+    /// the residual is below the first of these relative levels, the iterate's switch H(x) is
+    /// compared with the frozen `switch` after every iteration; at the first disagreement the
+    /// solve stops (the switch is wrong: an accurate answer of this system would be wasted).
+    /// Once the switch agrees at or below the second level the checks end and the solve goes
+    /// on to `tolerance` in the same Krylov space.
+    pub switch_check: Option<[f64; 2]>,
+}
+
+/// Solves A x = rhs for the frozen switch, starting from the `x` given (warm start), as `stop`
+/// says. `preconditioner` chooses the ADI sweeps or the multigrid V-cycle; `switch` (g of the
+/// frozen system) lets the multigrid keep the cavitated nodes out of its coarse space
+/// (`multigrid` module docs; the ADI ignores it) and is what `stop.switch_check` compares with.
 pub(crate) fn solve_krylov(
     grid: &Grid,
     st: &Stencil,
     x: &mut [f64],
-    tolerance: f64,
-    flux_scale: Option<f64>,
-    max_iterations: usize,
+    stop: KrylovStop,
     preconditioner: Preconditioner,
     switch: Option<&[f64]>,
     ws: &mut AdiWorkspace,
@@ -363,11 +377,13 @@ pub(crate) fn solve_krylov(
             stale = ws.multigrid.setup(grid, st, switch)? == Hierarchy::Kept { stale: true };
         }
     }
+    // The switch checks still to make: their levels and the switch they compare with.
+    let mut check = stop.switch_check.zip(switch);
     let mut iterations = 0;
     loop {
         let mut r = std::mem::take(&mut ws.r);
         let (rmax, own_scale) = st.residual(grid, x, &mut r);
-        let scale = flux_scale.unwrap_or(own_scale);
+        let scale = stop.flux_scale.unwrap_or(own_scale);
         if !rmax.is_finite() {
             ws.r = r;
             return Err(ReynoldsError::LinearSolve {
@@ -375,58 +391,120 @@ pub(crate) fn solve_krylov(
                 detail: format!("residual not finite after {iterations} iterations"),
             });
         }
-        let target = tolerance * scale;
+        let target = stop.tolerance * scale;
+        let done = KrylovInfo {
+            iterations,
+            residual: rmax,
+            scale,
+        };
         if rmax <= target || scale == 0.0 {
             ws.r = r;
-            return Ok(KrylovInfo {
-                iterations,
-                residual: rmax,
-                scale,
-            });
+            return Ok(done);
         }
-        if iterations >= max_iterations {
+        if let Some(([first, last], g)) = check
+            && rmax <= first * scale
+        {
+            if switch_disagrees(grid, x, g) {
+                ws.r = r;
+                return Ok(done);
+            }
+            if rmax <= last * scale {
+                check = None;
+            }
+        }
+        if iterations >= stop.max_iterations {
             ws.r = r;
             return Err(ReynoldsError::LinearNotConverged {
                 iterations,
                 residual: rmax / scale,
-                tolerance,
+                tolerance: stop.tolerance,
             });
         }
-        let used = gmres_cycle(
+        let cycle = gmres_cycle(
             grid,
             st,
-            r,
-            target,
-            max_iterations,
+            (x, r),
+            Targets {
+                residual: target,
+                check: check.map(|([first, last], g)| ([first * scale, last * scale], g)),
+                max_iterations: stop.max_iterations,
+            },
             preconditioner,
             switch,
             &mut stale,
             &mut iterations,
             ws,
         )?;
-        add_correction(ws, used, x);
+        match cycle {
+            Cycle::Ended { used, switch_held } => {
+                if switch_held {
+                    check = None;
+                }
+                add_correction(ws, used, x);
+            }
+            Cycle::SwitchWrong => {
+                // The iterate at the check, which `gmres_cycle` left in `ws.t`.
+                x.copy_from_slice(&ws.t);
+                let (rmax, own_scale) = st.residual(grid, x, &mut ws.r);
+                return Ok(KrylovInfo {
+                    iterations,
+                    residual: rmax,
+                    scale: stop.flux_scale.unwrap_or(own_scale),
+                });
+            }
+        }
     }
 }
 
-/// One cycle of flexible GMRES for [`solve_krylov`] from its residual `r`: up to `RESTART`
-/// Arnoldi steps on the right-preconditioned operator (rebuilding a stale multigrid hierarchy
-/// at `STALE_REBUILD_ITERATIONS`), ended early once the 2-norm estimate of the residual is below
-/// half the `target` or `max_iterations` are spent. Counts the iterations and returns how
-/// many directions the correction uses.
+/// Whether H(x) differs from the switch `g` at an unknown node (H = 1 where x ≥ 0, else 0:
+/// the semismooth Newton's `set_switch`).
+fn switch_disagrees(grid: &Grid, x: &[f64], g: &[f64]) -> bool {
+    x.iter()
+        .zip(g)
+        .zip(&grid.kind)
+        .any(|((&x, &g), &kind)| kind == NodeKind::Unknown && (x >= 0.0) != (g == 1.0))
+}
+
+/// What a [`gmres_cycle`] aims at: the residual target, the switch checks still to make (their
+/// absolute levels and the switch; [`KrylovStop::switch_check`]) and the iteration limit.
+struct Targets<'a> {
+    residual: f64,
+    check: Option<([f64; 2], &'a [f64])>,
+    max_iterations: usize,
+}
+
+/// How a [`gmres_cycle`] ended.
+enum Cycle {
+    /// At its target, its restart length or the iteration limit; its correction uses `used`
+    /// directions. `switch_held`: a check at or below its last level found the switch right.
+    Ended { used: usize, switch_held: bool },
+    /// At a check whose iterate's switch differs from the frozen one: the iterate is in `ws.t`.
+    SwitchWrong,
+}
+
+/// One cycle of flexible GMRES for [`solve_krylov`] from its iterate x and residual r
+/// (`start`): up to `RESTART` Arnoldi steps on the right-preconditioned operator (rebuilding a
+/// stale multigrid hierarchy at `STALE_REBUILD_ITERATIONS`), ended early once the 2-norm
+/// estimate of the residual is below half the target or the iteration limit is reached. While
+/// switch checks are due, the iterate of every step whose estimate is below half the first
+/// check level is formed (in `ws.t`) and its switch compared with the frozen one (the checks
+/// end once it agrees below half the last level). Counts the iterations.
 // Crate-internal, called once by `solve_krylov` with its own state.
 #[allow(clippy::too_many_arguments)]
 fn gmres_cycle(
     grid: &Grid,
     st: &Stencil,
-    r: Vec<f64>,
-    target: f64,
-    max_iterations: usize,
+    start: (&[f64], Vec<f64>),
+    targets: Targets,
     preconditioner: Preconditioner,
     switch: Option<&[f64]>,
     stale: &mut bool,
     iterations: &mut usize,
     ws: &mut AdiWorkspace,
-) -> Result<usize, ReynoldsError> {
+) -> Result<Cycle, ReynoldsError> {
+    let (x, r) = start;
+    let mut check = targets.check;
+    let mut switch_held = false;
     let beta = dot(&r, &r).sqrt();
     for (vk, rk) in ws.v[0].iter_mut().zip(&r) {
         *vk = rk / beta;
@@ -456,21 +534,38 @@ fn gmres_cycle(
         rotate_column(ws, jj);
         used = jj + 1;
         *iterations += 1;
-        if !ws.gvec[jj + 1].is_finite() {
+        let estimate = ws.gvec[jj + 1].abs();
+        if !estimate.is_finite() {
             return Err(ReynoldsError::LinearSolve {
                 solver: "ADI-Krylov",
                 detail: format!("Krylov residual not finite at iteration {iterations}"),
             });
         }
         // ‖r‖∞ ≤ ‖r‖₂: stop the cycle once the 2-norm estimate is below the target.
-        if ws.gvec[jj + 1].abs() <= 0.5 * target || hnorm == 0.0 {
+        if estimate <= 0.5 * targets.residual || hnorm == 0.0 {
             break;
         }
-        if *iterations >= max_iterations {
+        if let Some(([first, last], g)) = check
+            && estimate <= 0.5 * first
+        {
+            let mut trial = std::mem::take(&mut ws.t);
+            trial.copy_from_slice(x);
+            add_correction(ws, used, &mut trial);
+            let wrong = switch_disagrees(grid, &trial, g);
+            ws.t = trial;
+            if wrong {
+                return Ok(Cycle::SwitchWrong);
+            }
+            if estimate <= 0.5 * last {
+                check = None;
+                switch_held = true;
+            }
+        }
+        if *iterations >= targets.max_iterations {
             break;
         }
     }
-    Ok(used)
+    Ok(Cycle::Ended { used, switch_held })
 }
 
 /// Column j of the Arnoldi process: w = A z_j orthogonalised against v_0 … v_j by modified

@@ -63,13 +63,20 @@
 //! cavitated one with y > 0). A piecewise-linear problem is solved exactly once no node is
 //! infeasible (finite termination). Each iteration
 //!
-//! 1. solves A(g) y = b by the iterative solver of `adi`, started from the last y: loosely
-//!    (10⁵ × `tolerance`, at most 1e-5) while nodes are infeasible, to `tolerance` once none is
-//!    (inexact Newton: a step whose switch pattern is still wrong needs no accurate solve;
-//!    measured on the compressor-size inverse cycle of the timing report, 120 × 31, 1°: the
-//!    loose level 1e-6 → 1e-5 takes the Krylov iterations per film step 5.2 → 4.7 and the
-//!    instructions −3.4 %, the answers the same to the tolerance; 1e-4 saved less, −2.2 %,
-//!    as more switch decisions went wrong);
+//! 1. solves A(g) y = b by the iterative solver of `adi`, started from the last y, to
+//!    `tolerance` — but looks at its iterate on the way: from a residual of 1e-3 on
+//!    (`SWITCH_CHECK_FROM` × the loose level 10⁵ × `tolerance`, at most 1e-5) it compares the
+//!    iterate's switch H(y) with g after every Krylov iteration and stops at the first
+//!    disagreement, until the switch agrees at the loose level; from there the solve goes on to
+//!    `tolerance` in the same Krylov space (inexact Newton: a step whose switch pattern is still
+//!    wrong needs no accurate solve, and the one whose pattern is right is not restarted).
+//!    Measured on the compressor-size inverse cycle of the timing report (120 × 31, 1°): the
+//!    loose level 1e-6 → 1e-5 of separate loose solves took the Krylov iterations per film step
+//!    5.2 → 4.7 and the instructions −3.4 %; 1e-4 saved less, −2.2 %, as more switch decisions
+//!    went wrong. The checks inside one solve (2026-11-29, callgrind): −4.4 % instructions of
+//!    that cycle (4.6 → 4.4 Krylov iterations per film step) and −9.6 % of the warm-step bench's
+//!    step (three Newton steps of 3 + 3 + 3 Krylov iterations → two of 2 + 6), the answers the
+//!    same to the tolerance;
 //! 2. stops if the nonlinear residual at y, with y's own switch H(y), is below the tolerance;
 //! 3. else changes the switch of every infeasible node (a block pivot: the full Newton step) —
 //!    unless `BLOCK_TRIES` block pivots in a row have not lowered the smallest number of
@@ -1478,9 +1485,12 @@ impl ReynoldsSolver {
                     &self.grid,
                     &self.stencil,
                     &mut x,
-                    relative_tolerance.max(p.tolerance),
-                    None,
-                    p.max_linear_iterations,
+                    adi::KrylovStop {
+                        tolerance: relative_tolerance.max(p.tolerance),
+                        flux_scale: None,
+                        max_iterations: p.max_linear_iterations,
+                        switch_check: None,
+                    },
                     pc,
                     Some(&lin.g),
                     &mut self.ws,
@@ -1980,8 +1990,10 @@ impl ReynoldsSolver {
                 });
             }
             newton.iterations += 1;
-            let linear_tolerance = if tight { tolerance } else { loose };
-            let (y, scale) = frozen.solve(&g, &psi, linear_tolerance, &mut newton)?;
+            // To the tolerance; unless a single pivot asked for an exact solve, stopped on the
+            // way at the loose level if the switch is wrong there (module docs).
+            let switch_check = (!tight).then_some([SWITCH_CHECK_FROM * loose, loose]);
+            let (y, scale) = frozen.solve(&g, &psi, tolerance, switch_check, &mut newton)?;
             // The infeasible nodes: where the sign of y disagrees with g.
             g_new.copy_from_slice(&g);
             let infeasible = set_switch(grid, &y, &mut g_new);
@@ -2082,6 +2094,7 @@ impl FrozenSwitch<'_> {
         g: &[f64],
         psi: &[f64],
         linear_tolerance: f64,
+        switch_check: Option<[f64; 2]>,
         newton: &mut NewtonCounts,
     ) -> Result<(Vec<f64>, f64), ReynoldsError> {
         let (grid, speed) = (self.level.grid, self.level.speed);
@@ -2118,9 +2131,12 @@ impl FrozenSwitch<'_> {
                     grid,
                     self.stencil,
                     &mut y,
-                    linear_tolerance,
-                    steady.then_some(scale),
-                    p.max_linear_iterations,
+                    adi::KrylovStop {
+                        tolerance: linear_tolerance,
+                        flux_scale: steady.then_some(scale),
+                        max_iterations: p.max_linear_iterations,
+                        switch_check,
+                    },
                     pc,
                     Some(g),
                     self.ws,
@@ -2361,6 +2377,15 @@ const STEADY_SHIFT: f64 = 0.01;
 /// coupling's); the inverse and slider-crank Newtons ask for 1e-2 through
 /// [`ReynoldsSolver::film_force_jacobian_to`] (`inverse::ReynoldsFilm`, measured there).
 const JACOBIAN_TOLERANCE: f64 = 1e-5;
+
+/// The semismooth Newton's switch checks inside a solve (`adi::KrylovStop::switch_check`)
+/// begin at this multiple of the loose level (1e-3 for the default 1e-5) and end when the switch
+/// agrees at the loose level. Measured (callgrind, 2026-11-29) against checking at the loose
+/// level only (×1): the compressor-size inverse cycle of the timing report (120 × 31, 1°)
+/// 11.20e9 instructions at ×1, 11.05e9 at ×10, 10.97e9 at ×100, 11.31e9 at ×1000 (switches
+/// judged too early: more pivots); the warm-step bench's step 14.7e6 / 13.9e6 / 13.9e6 /
+/// 14.3e6. Before the checks (separate loose and tight solves) 11.48e9 and 15.3e6.
+const SWITCH_CHECK_FROM: f64 = 100.0;
 
 /// Block pivots allowed without lowering the number of infeasible nodes before a single
 /// (Murty) pivot is taken (\[JudicePires1994\] use 3 … 10).
