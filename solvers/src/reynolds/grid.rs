@@ -265,9 +265,13 @@ impl Grid {
             return half.to_vec();
         };
         let (nz, fz) = (self.n_z, m.full_n_z);
+        // Rows j ≤ (fz − 1)/2 are the half's rows 0 …, the rows above them its rows back down
+        // to 0: a copy and a reversed copy per column (no per-element index arithmetic).
+        let lower = fz.div_ceil(2);
         let mut out = Vec::with_capacity(self.n_theta * fz);
-        for i in 0..self.n_theta {
-            out.extend((0..fz).map(|j| half[i * nz + j.min(fz - 1 - j)]));
+        for column in half.chunks_exact(nz) {
+            out.extend_from_slice(&column[..lower]);
+            out.extend(column[..fz - lower].iter().rev());
         }
         out
     }
@@ -651,6 +655,41 @@ mod tests {
                 assert_eq!(grid.theta_face_factor[k], 1.0, "row {j}");
             }
             assert_eq!(grid.z_face_factor[j], 1.0, "row {j}");
+        }
+    }
+
+    /// The half grid's unfold puts on row j of the whole grid the half's row min(j, n_z − 1 − j)
+    /// (its mirror image about the mid-plane), for odd and even whole n_z; fold takes the rows
+    /// z ≤ 0 back (and the closed row from the whole grid's end row).
+    #[test]
+    fn unfold_mirrors_the_half_and_fold_takes_it_back() {
+        for full_nz in [31, 22, 5, 4] {
+            let mut p = params(vec![groove(1.0, 0.0, 0.3, 0.004)], SupplyModel::Grooves);
+            p.grid.n_z = full_nz;
+            let grid = Grid::new_half(&p, 0.0).unwrap();
+            let (nt, nz) = (grid.n_theta, grid.n_z);
+            assert_eq!(grid.mirror.unwrap().full_n_z, full_nz);
+            let half: Vec<f64> = (0..nt * nz).map(|k| (k as f64).sqrt()).collect();
+            let whole = grid.unfold(&half);
+            assert_eq!(whole.len(), nt * full_nz);
+            for i in 0..nt {
+                for j in 0..full_nz {
+                    let from = j.min(full_nz - 1 - j);
+                    assert!(from + 1 < nz, "the closed row is never read");
+                    assert_eq!(
+                        whole[i * full_nz + j],
+                        half[i * nz + from],
+                        "n_z {full_nz}, ({i}, {j})"
+                    );
+                }
+            }
+            let back = grid.fold(&whole);
+            for i in 0..nt {
+                for j in 0..nz - 1 {
+                    assert_eq!(back[i * nz + j], half[i * nz + j]);
+                }
+                assert_eq!(back[i * nz + nz - 1], whole[i * full_nz + full_nz - 1]);
+            }
         }
     }
 }
