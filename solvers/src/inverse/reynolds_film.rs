@@ -355,7 +355,9 @@ impl FilmModel for ReynoldsFilm {
     /// `dt` back (the trait's docs); the other schemes keep no level before.
     fn join_substeps(&self, start: &FilmState, end: &mut FilmState, dt: f64) {
         if end.previous_level.is_some() {
-            end.previous_level = Some((self.solver.film_content(start), dt));
+            // `start` is a state of this film's solver (the substeps' start).
+            let content = self.solver.film_content(start);
+            end.previous_level = Some((content.expect("a state of the film's own grid"), dt));
             end.previous_boundary_volume = Some(start.boundary_volume.clone());
         }
     }

@@ -1109,14 +1109,7 @@ impl ReynoldsSolver {
                 reason: "must be positive and finite",
             });
         }
-        let n = self.params.grid.n_theta * self.params.grid.n_z;
-        if state.density_ratio.len() != n || state.full_film.len() != n {
-            return Err(ReynoldsError::InvalidParameter {
-                name: "state",
-                value: state.density_ratio.len() as f64,
-                reason: "state fields do not match the grid size",
-            });
-        }
+        self.check_state_size(state)?;
         // A deformed film may carry the journal beyond the rigid clearance circle (its own
         // closure is checked where h is built).
         match state.deformation {
@@ -1125,9 +1118,25 @@ impl ReynoldsSolver {
         }
     }
 
+    /// A state of this solver's grid (the whole grid's n_θ × n_z fields), else
+    /// [`ReynoldsError::InvalidParameter`] naming the state.
+    fn check_state_size(&self, state: &FilmState) -> Result<(), ReynoldsError> {
+        let n = self.params.grid.n_theta * self.params.grid.n_z;
+        if state.density_ratio.len() != n || state.full_film.len() != n {
+            return Err(ReynoldsError::InvalidParameter {
+                name: "state",
+                value: state.density_ratio.len() as f64,
+                reason: "state fields do not match the grid size",
+            });
+        }
+        Ok(())
+    }
+
     /// The film content h φ of `state` at its nodes (m; h with the state's deformation): what
-    /// a BDF2 step takes as the level before ([`FilmState::previous_level`]).
-    pub fn film_content(&self, state: &FilmState) -> Array2<f64> {
+    /// a BDF2 step takes as the level before ([`FilmState::previous_level`]). A state of
+    /// another grid is an error.
+    pub fn film_content(&self, state: &FilmState) -> Result<Array2<f64>, ReynoldsError> {
+        self.check_state_size(state)?;
         let shape = state.density_ratio.dim();
         let state = &*self.internal_state(state);
         let h = FilmThickness::new(
@@ -1142,7 +1151,7 @@ impl ReynoldsSolver {
             .zip(state.density_ratio.iter())
             .map(|(h, phi)| h * phi)
             .collect::<Vec<f64>>();
-        Array2::from_shape_vec(shape, self.grid.unfold(&content)).expect("grid shape")
+        Ok(Array2::from_shape_vec(shape, self.grid.unfold(&content)).expect("grid shape"))
     }
 
     /// What the time scheme takes from the old level: the content hⁿφⁿ, the net outflow Dⁿ

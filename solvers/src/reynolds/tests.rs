@@ -1523,8 +1523,8 @@ fn the_half_grid_of_a_symmetric_bearing_is_the_whole_grids_film() {
                     same_solution(&format!("{what} from a start"), &a2, &b2);
                     close_field(
                         &format!("{what} content"),
-                        &half.film_content(&na),
-                        &whole.film_content(&nb),
+                        &half.film_content(&na).unwrap(),
+                        &whole.film_content(&nb).unwrap(),
                     );
                     (sa, sb) = (na, nb);
                     checked += 1;
@@ -1600,6 +1600,15 @@ fn a_start_of_another_grid_is_named() {
         assert!(
             matches!(err, ReynoldsError::InvalidParameter { name: "start", .. }),
             "{err}"
+        );
+        let err = s.film_content(&foreign).unwrap_err();
+        assert!(
+            matches!(err, ReynoldsError::InvalidParameter { name: "state", .. }),
+            "{err}"
+        );
+        assert_eq!(
+            s.film_content(&state).unwrap().dim(),
+            state.density_ratio.dim()
         );
     }
 }
