@@ -103,8 +103,22 @@ fn dirichlet_start(grid: &Grid, st: &Stencil) -> Vec<f64> {
 /// FGMRES + multigrid from the Dirichlet start to max|r| ≤ `tol` × flux scale: the solution
 /// and the iteration count.
 fn solve_mg(grid: &Grid, st: &Stencil, g: &[f64], tol: f64) -> (Vec<f64>, usize) {
+    let (x, info) = krylov_from_dirichlet(grid, st, g, tol, None, &mut Default::default());
+    (x, info.iterations)
+}
+
+/// FGMRES + multigrid from the Dirichlet start to max|r| ≤ `tol` × flux scale with the switch
+/// checks `check` (`adi::KrylovStop::switch_check`), on the workspace `ws`: the solution and
+/// the solve's report.
+fn krylov_from_dirichlet(
+    grid: &Grid,
+    st: &Stencil,
+    g: &[f64],
+    tol: f64,
+    check: Option<[f64; 2]>,
+    ws: &mut adi::AdiWorkspace,
+) -> (Vec<f64>, adi::KrylovInfo) {
     let mut x = dirichlet_start(grid, st);
-    let mut ws = adi::AdiWorkspace::default();
     let info = adi::solve_krylov(
         grid,
         st,
@@ -113,14 +127,14 @@ fn solve_mg(grid: &Grid, st: &Stencil, g: &[f64], tol: f64) -> (Vec<f64>, usize)
             tolerance: tol,
             flux_scale: None,
             max_iterations: 400,
-            switch_check: None,
+            switch_check: check,
         },
         adi::Preconditioner::Multigrid,
         Some(g),
-        &mut ws,
+        ws,
     )
     .unwrap();
-    (x, info.iterations)
+    (x, info)
 }
 
 // ------------------------------------------------------------------ transfer operators
@@ -502,22 +516,7 @@ fn kept_hierarchy_is_reused_only_where_it_serves() {
 
     // Solves with a kept hierarchy: the oracle's answer, and about a fresh hierarchy's count.
     let solve_with = |ws: &mut adi::AdiWorkspace, st: &Stencil| {
-        let mut x = dirichlet_start(grid, st);
-        let info = adi::solve_krylov(
-            grid,
-            st,
-            &mut x,
-            adi::KrylovStop {
-                tolerance: 1e-10,
-                flux_scale: None,
-                max_iterations: 400,
-                switch_check: None,
-            },
-            adi::Preconditioner::Multigrid,
-            Some(&g0),
-            ws,
-        )
-        .unwrap();
+        let (x, info) = krylov_from_dirichlet(grid, st, &g0, 1e-10, None, ws);
         let mut y = vec![0.0; grid.len()];
         oracle::solve_lu(grid, st, &mut y).unwrap();
         let ymax = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -1060,24 +1059,7 @@ fn a_switch_check_stops_only_a_solve_whose_switch_is_wrong() {
         (st, answer)
     };
     let solve = |st: &Stencil, check: Option<[f64; 2]>| {
-        let mut x = dirichlet_start(grid, st);
-        let mut ws = adi::AdiWorkspace::default();
-        let info = adi::solve_krylov(
-            grid,
-            st,
-            &mut x,
-            adi::KrylovStop {
-                tolerance: 1e-10,
-                flux_scale: None,
-                max_iterations: 400,
-                switch_check: check,
-            },
-            adi::Preconditioner::Multigrid,
-            Some(&g),
-            &mut ws,
-        )
-        .unwrap();
-        (x, info)
+        krylov_from_dirichlet(grid, st, &g, 1e-10, check, &mut Default::default())
     };
     let disagrees = |x: &[f64]| {
         (0..n)
