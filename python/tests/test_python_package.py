@@ -300,6 +300,10 @@ def test_ctrl_c_stops_a_running_solve():
     import os
     import signal
 
+    # Python keeps SIGINT ignored when it starts with it ignored (a job started in the
+    # background by a non-interactive shell, as a CI runner may): then no KeyboardInterrupt can
+    # come. The handler a terminal's Python has, for this test, whatever the launch.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
     angles = np.arange(0.0, 360.0, 5.0)
     started = time.monotonic()
@@ -314,6 +318,7 @@ def test_ctrl_c_stops_a_running_solve():
             )
     finally:
         timer.cancel()
+        signal.signal(signal.SIGINT, previous)
     # 0.5 s to the signal, then at most one signal interval (50 ms) and one film step.
     assert time.monotonic() - started < 5.0
 
