@@ -259,8 +259,11 @@ impl FilmModel for ReynoldsFilm {
             let tolerance = (MASS_PER_FORCE * r.accuracy).min(RELAXED_CAP);
             (tolerance > own).then_some((r, tolerance))
         });
-        let (sol, next) = match relaxed {
-            None => self.solver.solve_step_from(state, &input, start)?,
+        // Fields only for a captured step (`film_response` drops them otherwise); the solver
+        // is handed back with its default (fields) whatever the outcome.
+        self.solver.set_step_fields(self.capture);
+        let solved = (|| match relaxed {
+            None => self.solver.solve_step_from(state, &input, start),
             Some((r, tolerance)) => {
                 let (loose, next) = self
                     .solver
@@ -271,13 +274,15 @@ impl FilmModel for ReynoldsFilm {
                     let (mut sol, next) =
                         self.solver.solve_step_from(state, &input, Some(&next))?;
                     sol.linear_iterations += loose.linear_iterations;
-                    (sol, next)
+                    Ok((sol, next))
                 } else {
                     self.last_relaxed = true;
-                    (loose, next)
+                    Ok((loose, next))
                 }
             }
-        };
+        })();
+        self.solver.set_step_fields(true);
+        let (sol, next) = solved?;
         self.last = Some((state.eccentricity_ratio, next.clone()));
         Ok((film_response(sol, self.capture), next))
     }
@@ -601,5 +606,40 @@ mod tests {
                 tight.film_force
             );
         }
+    }
+    /// A step the adapter does not capture builds no fields (the solver skips them: the same
+    /// step otherwise), a captured one has them, and the solver is handed back with its fields
+    /// on: a direct `solve_step` on it after an uncaptured step has them too.
+    #[test]
+    fn fields_are_built_only_for_captured_steps() {
+        let cond = OperatingConditions {
+            journal_speed: 300.0,
+            bearing_speed: 0.0,
+            feed_pressures: vec![2e5],
+        };
+        let (dt, eps) = (1e-4, [0.5, -0.3]);
+        let mut m = film();
+        let state = m.initial_state([0.49, -0.3]);
+        m.set_capture_fields(false);
+        let (bare, bare_next) = m.step(&state, eps, dt, &cond).unwrap();
+        assert!(bare.fields.is_none());
+        let input = StepInput {
+            eccentricity_ratio: eps,
+            dt,
+            conditions: cond.clone(),
+        };
+        let (direct, direct_next) = m.solver_mut().solve_step(&state, &input).unwrap();
+        assert!(
+            !direct.pressure.is_empty(),
+            "the solver keeps its fields on"
+        );
+        assert_eq!(direct_next, bare_next);
+        assert_eq!(direct.film_force, bare.film_force);
+        let mut m = film();
+        m.set_capture_fields(true);
+        let (captured, _) = m.step(&state, eps, dt, &cond).unwrap();
+        let fields = captured.fields.expect("captured");
+        assert_eq!(fields.pressure, direct.pressure);
+        assert_eq!(fields.switch, direct.switch);
     }
 }

@@ -35,14 +35,13 @@ impl FilmThickness {
         let mut node = vec![0.0; n];
         let mut face_theta = vec![0.0; n];
         let [ex, ey] = eccentricity_ratio;
-        for i in 0..grid.n_theta {
-            let th = grid.theta(i);
-            let thf = th + 0.5 * grid.d_theta;
-            let mut h = clearance * (1.0 - ex * th.cos() - ey * th.sin());
-            let mut hf = clearance * (1.0 - ex * thf.cos() - ey * thf.sin());
+        for (i, t) in grid.column_trig.iter().enumerate() {
+            let mut h = clearance * (1.0 - ex * t.cos - ey * t.sin);
+            let mut hf = clearance * (1.0 - ex * t.cos_face - ey * t.sin_face);
             if let Some(d) = deformation {
+                let th = grid.theta(i);
                 h += d.at(th);
-                hf += d.at(thf);
+                hf += d.at(th + 0.5 * grid.d_theta);
             }
             for j in 0..grid.n_z {
                 node[i * grid.n_z + j] = h;

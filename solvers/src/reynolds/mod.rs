@@ -626,6 +626,11 @@ pub struct ReynoldsSolver {
     /// The step under way is a trial ([`ReynoldsSolver::solve_trial_step_to`]): its friction
     /// outputs are not evaluated.
     trial: bool,
+    /// A caller that reads no fields of a step's solution ([`crate::inverse::ReynoldsFilm`]
+    /// when it does not capture them): the solution's `pressure`, `density_ratio`,
+    /// `film_fraction` and `switch` are left empty (0 × 0) instead of built and unfolded
+    /// onto the whole grid for nothing ([`ReynoldsSolver::set_step_fields`]).
+    skip_step_fields: bool,
     /// Solve the half z ≤ 0 of a bearing symmetric about its mid-plane (`grid` module docs,
     /// "Mirror symmetry"): set by [`ReynoldsSolver::new`] when the parameters are.
     half: bool,
@@ -813,6 +818,7 @@ impl ReynoldsSolver {
             deformation: None,
             step_tolerance: None,
             trial: false,
+            skip_step_fields: false,
             half,
         })
     }
@@ -984,6 +990,14 @@ impl ReynoldsSolver {
         answer
     }
 
+    /// Whether the time steps' solutions carry their fields (`pressure`, `density_ratio`,
+    /// `film_fraction`, `switch`; the default) or leave them empty (0 × 0) for a caller that
+    /// reads only the integrals: the inverse adapter between captured steps. Steady solves
+    /// always carry them.
+    pub(crate) fn set_step_fields(&mut self, wanted: bool) {
+        self.skip_step_fields = !wanted;
+    }
+
     /// [`solve_step_to`](Self::solve_step_to) with its tolerance set.
     fn solve_step_relaxed(
         &mut self,
@@ -1070,6 +1084,7 @@ impl ReynoldsSolver {
             &core,
             &self.viscosity_field,
             friction,
+            !self.skip_step_fields,
         );
         if self.deformation.is_some() {
             deformed_min_film(&mut sol, &core);
@@ -1518,13 +1533,13 @@ impl ReynoldsSolver {
         let mut force = [0.0; 2];
         let mut dp = vec![0.0; grid.len()];
         for i in 0..grid.n_theta {
-            let th = grid.theta(i);
+            let trig = grid.column_trig[i];
             for j in 0..nz {
                 let k = i * nz + j;
                 if grid.kind[k] == NodeKind::Unknown {
                     let d = self.params.bulk_modulus * g[k] * x[k];
-                    force[0] -= grid.area_weight[k] * d * th.cos();
-                    force[1] -= grid.area_weight[k] * d * th.sin();
+                    force[0] -= grid.area_weight[k] * d * trig.cos;
+                    force[1] -= grid.area_weight[k] * d * trig.sin;
                     dp[k] = d;
                 }
             }
@@ -1565,6 +1580,7 @@ impl ReynoldsSolver {
             &core,
             &self.viscosity_field,
             outputs::Friction::AtNewLevel,
+            true,
         );
         if self.deformation.is_some() {
             deformed_min_film(&mut sol, &core);
@@ -2240,16 +2256,17 @@ fn thickness_change(
     dh_face: &mut [f64],
 ) {
     let nz = grid.n_z;
-    for i in 0..grid.n_theta {
-        let th = grid.theta(i);
-        let thf = th + 0.5 * grid.d_theta;
+    for (i, t) in grid.column_trig.iter().enumerate() {
         let (dn, df) = match change {
-            ThicknessChange::Eccentricity(0) => (-clearance * th.cos(), -clearance * thf.cos()),
+            ThicknessChange::Eccentricity(0) => (-clearance * t.cos, -clearance * t.cos_face),
             ThicknessChange::Eccentricity(_) => {
                 // 1 (checked by the caller)
-                (-clearance * th.sin(), -clearance * thf.sin())
+                (-clearance * t.sin, -clearance * t.sin_face)
             }
-            ThicknessChange::Gap(d) => (d.at(th), d.at(thf)),
+            ThicknessChange::Gap(d) => {
+                let th = grid.theta(i);
+                (d.at(th), d.at(th + 0.5 * grid.d_theta))
+            }
         };
         for j in 0..nz {
             dh_node[i * nz + j] = dn;

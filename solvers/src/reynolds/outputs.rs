@@ -65,6 +65,7 @@ pub(crate) fn film_solution(
     core: &Core,
     mu: &[f64],
     friction: Friction<'_>,
+    fields: bool,
 ) -> FilmSolution {
     let grid = &core.grid;
     let nt = grid.n_theta;
@@ -107,14 +108,25 @@ pub(crate) fn film_solution(
         Some(_) => [flows.side_leakage[0]; 2],
         None => flows.side_leakage,
     };
-    let shape = (nt, params.grid.n_z);
-    let to_arr = |v: Vec<f64>| Array2::from_shape_vec(shape, grid.unfold(&v)).expect("grid shape");
-    let density: Vec<f64> = core.psi.iter().map(|p| 1.0 + p).collect();
-    let fraction: Vec<f64> = density
-        .iter()
-        .zip(&core.g)
-        .map(|(&d, &g)| if g > 0.5 { 1.0 } else { d })
-        .collect();
+    let [pressure, density_ratio, film_fraction, switch] = if fields {
+        let shape = (nt, params.grid.n_z);
+        let to_arr =
+            |v: Vec<f64>| Array2::from_shape_vec(shape, grid.unfold(&v)).expect("grid shape");
+        let density: Vec<f64> = core.psi.iter().map(|p| 1.0 + p).collect();
+        let fraction: Vec<f64> = density
+            .iter()
+            .zip(&core.g)
+            .map(|(&d, &g)| if g > 0.5 { 1.0 } else { d })
+            .collect();
+        [
+            to_arr(pressure),
+            to_arr(density),
+            to_arr(fraction),
+            to_arr(core.g.clone()),
+        ]
+    } else {
+        std::array::from_fn(|_| Array2::zeros((0, 0)))
+    };
     let force = [two * force[0], two * force[1]];
     FilmSolution {
         film_force: force,
@@ -139,10 +151,10 @@ pub(crate) fn film_solution(
         residual: core.residual,
         theta: (0..nt).map(|i| grid.theta(i)).collect(),
         z: (0..params.grid.n_z).map(|j| grid.whole_z(j)).collect(),
-        pressure: to_arr(pressure),
-        density_ratio: to_arr(density),
-        film_fraction: to_arr(fraction),
-        switch: to_arr(core.g.clone()),
+        pressure,
+        density_ratio,
+        film_fraction,
+        switch,
     }
 }
 
@@ -201,7 +213,7 @@ impl PressureIntegrals {
         let (mut cav_area, mut area) = (0.0, 0.0);
         for i in 0..grid.n_theta {
             let th = grid.theta(i);
-            let (c, s) = (th.cos(), th.sin());
+            let (c, s) = (grid.column_trig[i].cos, grid.column_trig[i].sin);
             for j in 0..nz {
                 let k = i * nz + j;
                 let w = grid.area_weight[k];

@@ -329,6 +329,51 @@ fn a_relaxed_step_is_close_and_finishes_to_the_tight_answer() {
     );
 }
 
+/// A step without its fields (the inverse adapter between captured steps,
+/// [`ReynoldsSolver::set_step_fields`]) is the same step: every integral, count and the next
+/// state bit for bit, only the four fields left empty; with fields wanted again they are back.
+#[test]
+fn a_step_without_fields_is_the_same_step() {
+    let c = conditions(2e5);
+    let dt = 1e-4;
+    let fresh = || ReynoldsSolver::new(grooved(LinearSolver::MultigridKrylov)).unwrap();
+    let state = whirled_state(&mut fresh(), &c, dt);
+    let a: f64 = 0.62;
+    let input = StepInput {
+        eccentricity_ratio: [0.601 * a.cos(), 0.601 * a.sin()],
+        dt,
+        conditions: c.clone(),
+    };
+    let (full, full_state) = fresh().solve_step(&state, &input).unwrap();
+    let mut s = fresh();
+    s.set_step_fields(false);
+    let (bare, bare_state) = s.solve_step(&state, &input).unwrap();
+    assert_eq!(bare_state, full_state);
+    for field in [
+        &bare.pressure,
+        &bare.density_ratio,
+        &bare.film_fraction,
+        &bare.switch,
+    ] {
+        assert!(field.is_empty());
+    }
+    assert!(!full.pressure.is_empty() && full.pressure.dim() == full.switch.dim());
+    let mut same = full.clone();
+    same.pressure = bare.pressure.clone();
+    same.density_ratio = bare.density_ratio.clone();
+    same.film_fraction = bare.film_fraction.clone();
+    same.switch = bare.switch.clone();
+    assert_eq!(same, bare);
+    s.set_step_fields(true);
+    let (again, _) = s.solve_step(&state, &input).unwrap();
+    assert_eq!(again.pressure, full.pressure);
+    assert_eq!(again.switch, full.switch);
+    // Steady solves carry their fields whatever the setting.
+    s.set_step_fields(false);
+    let steady = s.solve_steady(input.eccentricity_ratio, &c).unwrap();
+    assert_eq!(steady.pressure.dim(), full.pressure.dim());
+}
+
 /// Lemke's complementary pivoting (\[Lemke1965\]; the LCP oracle of \[Giacopini2010\]) on a
 /// dense LCP: find z ≥ 0 with w = M z + q ≥ 0 and zᵀw = 0. Returns (z, w).
 fn lemke(m: &nalgebra::DMatrix<f64>, q: &nalgebra::DVector<f64>) -> (Vec<f64>, Vec<f64>) {
