@@ -825,9 +825,13 @@ fn film_force_jacobian_matches_differences_on_smooth_pieces() {
 /// pressure work) — equals the viscous dissipation ∫∫ [μU²f/h + h³|∇p|²/(12μ)] dA. Our torques
 /// (shear stress with central pressure differences) and our dissipation (a cell sum and a face
 /// sum) are different quadratures of the film, so the identity closes only as the grid is
-/// refined: measured 1.8e-3 / 7.5e-4 / 2.5e-4 at 60 × 9 / 120 × 17 / 240 × 33 (2.1e-4 at
-/// 480 × 65, where the groove's snapping to nodes dominates); asserted: the mismatch falls
-/// with every refinement and is below 5e-4 on the finest grid.
+/// refined: measured 1.84e-3 / 9.0e-4 / 2.24e-4 at 60 × 9 / 120 × 17 / 240 × 33 (2026-11-29;
+/// 1.8e-3 / 7.5e-4 / 2.5e-4 with the first version of the second-generation film, and 2.1e-4
+/// at 480 × 65 then, where the groove's snapping to nodes dominates); asserted: the mismatch
+/// falls with every refinement and is below 5e-4 on the finest grid. The θ-faces' dissipation
+/// takes the mean of the two nodes' h; with the exact face h of the pressure flux instead the
+/// mismatches are 1.86e-3 / 9.06e-4 / 2.25e-4 (measured 2026-11-29): the choice does not
+/// matter at this order.
 #[test]
 fn energy_identity_closes_with_the_grid() {
     let mut last = f64::INFINITY;
