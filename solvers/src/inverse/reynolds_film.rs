@@ -607,6 +607,7 @@ mod tests {
             );
         }
     }
+
     /// A step the adapter does not capture builds no fields (the solver skips them: the same
     /// step otherwise), a captured one has them, and the solver is handed back with its fields
     /// on: a direct `solve_step` on it after an uncaptured step has them too.
