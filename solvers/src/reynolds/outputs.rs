@@ -34,17 +34,8 @@
 use ndarray::Array2;
 use std::f64::consts::TAU;
 
-use super::grid::{Grid, NodeKind};
+use super::grid::{FlowRegion, Grid, NodeKind};
 use super::{Core, FilmSolution, FilmState, OperatingConditions, ReynoldsParams};
-
-#[derive(Clone, Copy, PartialEq)]
-enum Region {
-    Unknown,
-    EndLow,
-    EndHigh,
-    Groove(u16),
-    Line,
-}
 
 /// Which pressure the torques and the power loss of [`film_solution`] are evaluated with.
 #[derive(Debug, Clone, Copy)]
@@ -248,51 +239,33 @@ struct BoundaryFlows {
 
 impl BoundaryFlows {
     fn new(params: &ReynoldsParams, core: &Core) -> Self {
-        let grid = &core.grid;
-        let (nt, nz) = (grid.n_theta, grid.n_z);
-        let region = |k: usize| match grid.kind[k] {
-            NodeKind::Unknown => Region::Unknown,
-            NodeKind::End if k.is_multiple_of(nz) => Region::EndLow,
-            NodeKind::End => Region::EndHigh,
-            NodeKind::Groove(g) => Region::Groove(g),
-            NodeKind::SupplyLine => Region::Line,
-        };
         let mut flows = Self {
             side_leakage: [0.0, 0.0],
             supply: vec![0.0; params.grooves.len()],
             supply_line: 0.0,
         };
-        for i in 0..nt {
-            let ie = (i + 1) % nt;
-            for j in 0..nz {
-                let k = i * nz + j;
-                let (rk, re) = (region(k), region(ie * nz + j));
-                // θ-faces between two end nodes belong to no balance.
-                if !(matches!(rk, Region::EndLow | Region::EndHigh)
-                    && matches!(re, Region::EndLow | Region::EndHigh))
-                {
-                    flows.account(rk, re, core.flux_theta[k]);
-                }
-                if j + 1 < nz {
-                    flows.account(rk, region(k + 1), core.flux_z[k]);
-                }
-            }
+        // Only the faces between two regions book a flux (`Grid::region_faces`, in the order
+        // of the face loop over the grid).
+        for face in &core.grid.region_faces {
+            let f = if face.z_face {
+                core.flux_z[face.k]
+            } else {
+                core.flux_theta[face.k]
+            };
+            flows.account(face.from, face.to, f);
         }
         flows
     }
 
-    /// The flux `f` through a face from region `from` to region `to`.
-    fn account(&mut self, from: Region, to: Region, f: f64) {
-        if from == to {
-            return;
-        }
+    /// The flux `f` through a face from region `from` to region `to` (two different ones).
+    fn account(&mut self, from: FlowRegion, to: FlowRegion, f: f64) {
         for (region, sign) in [(from, 1.0), (to, -1.0)] {
             match region {
-                Region::Groove(g) => self.supply[g as usize] += sign * f,
-                Region::Line => self.supply_line += sign * f,
-                Region::EndLow => self.side_leakage[0] -= sign * f,
-                Region::EndHigh => self.side_leakage[1] -= sign * f,
-                Region::Unknown => {}
+                FlowRegion::Groove(g) => self.supply[g as usize] += sign * f,
+                FlowRegion::Line => self.supply_line += sign * f,
+                FlowRegion::EndLow => self.side_leakage[0] -= sign * f,
+                FlowRegion::EndHigh => self.side_leakage[1] -= sign * f,
+                FlowRegion::Unknown => {}
             }
         }
     }
