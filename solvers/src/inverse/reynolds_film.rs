@@ -141,20 +141,40 @@ impl StepHistory {
         if !(ratio > 0.0 && ratio <= 2.0) {
             return None;
         }
-        let mut start = state.clone();
-        ndarray::Zip::from(&mut start.density_ratio)
+        let mut density_ratio = state.density_ratio.clone();
+        ndarray::Zip::from(&mut density_ratio)
             .and(&before.density_ratio)
             .for_each(|phi, &phi_before| {
                 *phi = (*phi + ratio * (*phi - phi_before)).max(0.0);
             });
-        if start.density_ratio.iter().any(|phi| !phi.is_finite()) {
+        if density_ratio.iter().any(|phi| !phi.is_finite()) {
             return None;
         }
-        start.full_film = start.density_ratio.mapv(|phi| phi >= 1.0);
+        let full_film = density_ratio.mapv(|phi| phi >= 1.0);
         // At the step's own ε: the start is a guess of this very step, which the solver's
         // sensitivity prediction (for an iterate of another ε) must not move.
-        start.eccentricity_ratio = eccentricity_ratio;
-        Some(start)
+        Some(start_film(eccentricity_ratio, density_ratio, full_film))
+    }
+}
+
+/// A start for a film step ([`ReynoldsSolver::solve_step_from`]): the solver reads a start's
+/// ε, φ and switch only, so the rest of a state (the level before, the net outflow, the
+/// boundary volumes: three more whole-grid arrays) is neither copied nor kept.
+fn start_film(
+    eccentricity_ratio: [f64; 2],
+    density_ratio: ndarray::Array2<f64>,
+    full_film: ndarray::Array2<bool>,
+) -> FilmState {
+    FilmState {
+        eccentricity_ratio,
+        density_ratio,
+        full_film,
+        net_outflow: None,
+        previous_level: None,
+        deformation: None,
+        boundary_flow: Vec::new(),
+        boundary_volume: Vec::new(),
+        previous_boundary_volume: None,
     }
 }
 
@@ -283,7 +303,14 @@ impl FilmModel for ReynoldsFilm {
         })();
         self.solver.set_step_fields(true);
         let (sol, next) = solved?;
-        self.last = Some((state.eccentricity_ratio, next.clone()));
+        self.last = Some((
+            state.eccentricity_ratio,
+            start_film(
+                next.eccentricity_ratio,
+                next.density_ratio.clone(),
+                next.full_film.clone(),
+            ),
+        ));
         Ok((film_response(sol, self.capture), next))
     }
 

@@ -838,6 +838,29 @@ impl ReynoldsSolver {
         ))
     }
 
+    /// The Newton start ψ⁰ = φ − 1, g⁰ of a step on the solver's grid: the `start` film's when
+    /// given (a whole-grid state, its size checked against the state's where the step begins;
+    /// only its φ and switch are read, folded onto a half grid), else the old level's (`state`,
+    /// already on the solver's grid).
+    fn start_fields(&self, state: &FilmState, start: Option<&FilmState>) -> (Vec<f64>, Vec<f64>) {
+        let on_grid = |phi: &[f64], full: &[bool]| -> (Vec<f64>, Vec<f64>) {
+            (
+                phi.iter().map(|phi| phi - 1.0).collect(),
+                full.iter().map(|&f| if f { 1.0 } else { 0.0 }).collect(),
+            )
+        };
+        match start {
+            None => on_grid(&flat(&state.density_ratio), &flat(&state.full_film)),
+            Some(f) if self.grid.mirror.is_none() => {
+                on_grid(&flat(&f.density_ratio), &flat(&f.full_film))
+            }
+            Some(f) => on_grid(
+                &self.grid.fold(&flat(&f.density_ratio)),
+                &self.grid.fold(&flat(&f.full_film)),
+            ),
+        }
+    }
+
     /// A state of the solver's grid on the whole grid (the inverse of
     /// [`Self::internal_state`]).
     fn external_state(&self, state: FilmState) -> FilmState {
@@ -1019,10 +1042,8 @@ impl ReynoldsSolver {
             });
         }
         let state = &*self.internal_state(state);
-        let start_internal = start.map(|f| self.internal_state(f));
-        let start = start_internal.as_deref();
         let old = self.old_time_level(state, input);
-        let (mut psi0, g0) = start_fields(state, start);
+        let (mut psi0, g0) = self.start_fields(state, start);
         let backward_euler = TimeTerm::Step {
             dt: input.dt,
             old_content: &old.content,
@@ -2338,19 +2359,6 @@ struct OldLevel {
     outflow: Option<Vec<f64>>,
     /// BDF2's (Δt/a₀, (a₁ cⁿ − a₂ cⁿ⁻¹)/a₀) when a previous level exists.
     bdf2: Option<(f64, Vec<f64>)>,
-}
-
-/// The Newton start ψ⁰ = φ − 1, g⁰ of a step: the `start` film when given (its size checked
-/// against the state's where the step begins), else the old level's.
-fn start_fields(state: &FilmState, start: Option<&FilmState>) -> (Vec<f64>, Vec<f64>) {
-    let first = start.unwrap_or(state);
-    let psi0 = first.density_ratio.iter().map(|phi| phi - 1.0).collect();
-    let g0 = first
-        .full_film
-        .iter()
-        .map(|&f| if f { 1.0 } else { 0.0 })
-        .collect();
-    (psi0, g0)
 }
 
 /// `state` with its fields carried to another grid of `shape` by `field` (φ and the content
