@@ -1061,6 +1061,26 @@ impl Clone for Multigrid {
 /// The fine level's coarse-space mask at node k: 1 on the full-film unknowns, 0 on Dirichlet
 /// and cavitated nodes (module docs, "Masks"); without a switch every unknown is full.
 #[inline(always)]
+/// Whether `mask` is the finest level's mask of `grid` with `switch` ([`fine_mask`] at every
+/// node; a loop without early exit).
+fn same_mask(grid: &Grid, switch: Option<&[f64]>, mask: &[f64]) -> bool {
+    let kind = &grid.kind[..mask.len()];
+    let mut same = true;
+    match switch {
+        None => {
+            for (&m, &kind) in mask.iter().zip(kind) {
+                same &= m == f64::from(u8::from(kind == NodeKind::Unknown));
+            }
+        }
+        Some(g) => {
+            for ((&m, &kind), &g) in mask.iter().zip(kind).zip(&g[..mask.len()]) {
+                same &= m == f64::from(u8::from(kind == NodeKind::Unknown && g > 0.5));
+            }
+        }
+    }
+    same
+}
+
 fn fine_mask(grid: &Grid, switch: Option<&[f64]>, k: usize) -> f64 {
     let full = switch.is_none_or(|g| g[k] > 0.5);
     if grid.kind[k] == NodeKind::Unknown && full {
@@ -1200,16 +1220,24 @@ impl Multigrid {
         if !(a.five && a.nt == nt && a.nz == nz && fine.mask.len() == grid.len()) {
             return None;
         }
-        let old = [&a.c[C], &a.c[W], &a.c[E], &a.c[S], &a.c[N]];
-        let new = [&st.p, &st.w, &st.e, &st.s, &st.n];
+        let n = nt * nz;
+        let old = [&a.c[C], &a.c[W], &a.c[E], &a.c[S], &a.c[N]].map(|v| &v[..n]);
+        let new = [&st.p, &st.w, &st.e, &st.s, &st.n].map(|v| &v[..n]);
         let mut columns = vec![false; nt];
         let mut count = 0;
         for (i, column) in columns.iter_mut().enumerate() {
-            *column = (i * nz..(i + 1) * nz).any(|k| {
-                fine.mask[k] != fine_mask(grid, switch, k)
-                    || (0..5).any(|o| old[o][k].to_bits() != new[o][k].to_bits())
-            });
-            count += usize::from(*column);
+            // Any row of the column (a loop without early exit).
+            let mut differs = false;
+            for k in i * nz..(i + 1) * nz {
+                differs |= (fine.mask[k] != fine_mask(grid, switch, k))
+                    | (old[0][k].to_bits() != new[0][k].to_bits())
+                    | (old[1][k].to_bits() != new[1][k].to_bits())
+                    | (old[2][k].to_bits() != new[2][k].to_bits())
+                    | (old[3][k].to_bits() != new[3][k].to_bits())
+                    | (old[4][k].to_bits() != new[4][k].to_bits());
+            }
+            *column = differs;
+            count += usize::from(differs);
         }
         (count > 0 && 4 * count <= nt).then_some(columns)
     }
@@ -1374,24 +1402,36 @@ impl Multigrid {
             return Hierarchy::Built;
         };
         let a = &fine.a;
+        let n = grid.len();
         let same_space = a.five
             && a.nt == grid.n_theta
             && a.nz == grid.n_z
-            && fine.mask.len() == grid.len()
-            && (0..grid.len()).all(|k| fine.mask[k] == fine_mask(grid, switch, k));
+            && fine.mask.len() == n
+            && same_mask(grid, switch, &fine.mask);
         if !same_space {
             return Hierarchy::Built;
         }
-        let old = [&a.c[C], &a.c[W], &a.c[E], &a.c[S], &a.c[N]];
-        let new = [&st.p, &st.w, &st.e, &st.s, &st.n];
+        let old = [&a.c[C], &a.c[W], &a.c[E], &a.c[S], &a.c[N]].map(|v| &v[..n]);
+        let new = [&st.p, &st.w, &st.e, &st.s, &st.n].map(|v| &v[..n]);
         if old == new {
             return Hierarchy::Kept { stale: false };
         }
-        let within = (0..grid.len()).all(|k| {
-            let change: f64 = (0..5).map(|o| (new[o][k] - old[o][k]).abs()).sum();
-            let size: f64 = (0..5).map(|o| old[o][k].abs()).sum();
-            change <= MAX_REUSE_DRIFT * size
-        });
+        // Every row within the drift bound (a loop without early exit: it vectorizes, and
+        // most hierarchies asked are within it).
+        let mut within = true;
+        for k in 0..n {
+            let change = (new[0][k] - old[0][k]).abs()
+                + (new[1][k] - old[1][k]).abs()
+                + (new[2][k] - old[2][k]).abs()
+                + (new[3][k] - old[3][k]).abs()
+                + (new[4][k] - old[4][k]).abs();
+            let size = old[0][k].abs()
+                + old[1][k].abs()
+                + old[2][k].abs()
+                + old[3][k].abs()
+                + old[4][k].abs();
+            within &= change <= MAX_REUSE_DRIFT * size;
+        }
         if within {
             Hierarchy::Kept { stale: true }
         } else {

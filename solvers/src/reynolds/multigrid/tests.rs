@@ -603,6 +603,37 @@ fn kept_hierarchy_is_reused_only_where_it_serves() {
     );
 }
 
+/// The reuse test's mask comparison (a loop without early exit) agrees with [`fine_mask`]
+/// node by node, with and without a switch.
+#[test]
+fn same_mask_is_the_fine_mask_at_every_node() {
+    let half = |grid: &Grid, k: usize| diverging_half(grid, k);
+    let (s, _, g0) = frozen_system(
+        compressor(LinearSolver::MultigridKrylov, 60, 15),
+        [0.0, -0.8],
+        Some(STEP),
+        &half,
+    );
+    let grid = &s.grid;
+    let n = grid.len();
+    let with: Vec<f64> = (0..n).map(|k| fine_mask(grid, Some(&g0), k)).collect();
+    let without: Vec<f64> = (0..n).map(|k| fine_mask(grid, None, k)).collect();
+    assert!(same_mask(grid, Some(&g0), &with));
+    assert!(same_mask(grid, None, &without));
+    // The cavitated unknowns tell the two apart.
+    assert_ne!(with, without);
+    assert!(!same_mask(grid, None, &with));
+    assert!(!same_mask(grid, Some(&g0), &without));
+    // One node switched anywhere (the last full unknown: the loop must not stop early).
+    let k = (0..n)
+        .rev()
+        .find(|&k| grid.kind[k] == NodeKind::Unknown && g0[k] == 1.0)
+        .unwrap();
+    let mut g1 = g0.clone();
+    g1[k] = 0.0;
+    assert!(!same_mask(grid, Some(&g1), &with));
+}
+
 /// The same answer as the oracle through the whole semismooth Newton solve (steady and a time
 /// step, both cavitating): the multigrid film equals the LU film (same switch, pressures to
 /// 1e-7 of p_max: both stop at a mass residual of 1e-10 of the flux scale).
