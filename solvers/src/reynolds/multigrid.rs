@@ -1064,7 +1064,17 @@ impl Clone for Multigrid {
 /// Whether `mask` is the finest level's mask of `grid` with `switch` ([`fine_mask`] at every
 /// node; a loop without early exit).
 fn same_mask(grid: &Grid, switch: Option<&[f64]>, mask: &[f64]) -> bool {
-    let kind = &grid.kind[..mask.len()];
+    same_mask_at(grid, switch, mask, 0..mask.len())
+}
+
+/// [`same_mask`] on the nodes `nodes` only.
+fn same_mask_at(
+    grid: &Grid,
+    switch: Option<&[f64]>,
+    mask: &[f64],
+    nodes: std::ops::Range<usize>,
+) -> bool {
+    let (mask, kind) = (&mask[nodes.clone()], &grid.kind[nodes.clone()]);
     let mut same = true;
     match switch {
         None => {
@@ -1073,7 +1083,7 @@ fn same_mask(grid: &Grid, switch: Option<&[f64]>, mask: &[f64]) -> bool {
             }
         }
         Some(g) => {
-            for ((&m, &kind), &g) in mask.iter().zip(kind).zip(&g[..mask.len()]) {
+            for ((&m, &kind), &g) in mask.iter().zip(kind).zip(&g[nodes]) {
                 same &= m == f64::from(u8::from(kind == NodeKind::Unknown && g > 0.5));
             }
         }
@@ -1227,10 +1237,10 @@ impl Multigrid {
         let mut count = 0;
         for (i, column) in columns.iter_mut().enumerate() {
             // Any row of the column (a loop without early exit).
-            let mut differs = false;
-            for k in i * nz..(i + 1) * nz {
-                differs |= (fine.mask[k] != fine_mask(grid, switch, k))
-                    | (old[0][k].to_bits() != new[0][k].to_bits())
+            let rows = i * nz..(i + 1) * nz;
+            let mut differs = !same_mask_at(grid, switch, &fine.mask, rows.clone());
+            for k in rows {
+                differs |= (old[0][k].to_bits() != new[0][k].to_bits())
                     | (old[1][k].to_bits() != new[1][k].to_bits())
                     | (old[2][k].to_bits() != new[2][k].to_bits())
                     | (old[3][k].to_bits() != new[3][k].to_bits())
