@@ -409,8 +409,8 @@ fn assemble_columns(
             old_outflow,
         } = time
         {
-            for k in rows.clone() {
-                let c = grid.cell_area(k % nz) / dt;
+            for (j, k) in rows.clone().enumerate() {
+                let c = grid.cell_area(j) / dt;
                 st.p[k] += c * lv.h[k];
                 st.rhs[k] += c * (old_content[k] - lv.h[k]);
                 if let Some(d) = old_outflow {
@@ -522,8 +522,8 @@ pub(crate) fn mass_residual(
         old_outflow,
     } = time
     {
-        for k in 0..grid.len() {
-            let v = grid.cell_area(k % nz);
+        for (k, j) in (0..grid.n_theta).flat_map(|_| 0..nz).enumerate() {
+            let v = grid.cell_area(j);
             out[k] += v / dt * (lv.h[k] * (1.0 + content[k]) - old_content[k]);
             if let Some(d) = old_outflow {
                 out[k] += 0.5 * d[k];
@@ -585,8 +585,8 @@ pub(crate) fn residual_eccentricity_derivative(
         }
     }
     if let Some(dt) = dt {
-        for k in 0..grid.len() {
-            let v = grid.cell_area(k % nz);
+        for (k, j) in (0..nt).flat_map(|_| 0..nz).enumerate() {
+            let v = grid.cell_area(j);
             out[k] += v / dt * dh_node[k] * (1.0 + content[k]);
         }
     }
