@@ -167,6 +167,51 @@ fn dense_transfers(nt: usize, nz: usize, fmask: &[f64]) -> (Vec<Vec<f64>>, Vec<V
     (p, r)
 }
 
+/// The flat defect of a whole level (or of one zebra parity's columns) is the column-by-column
+/// defect bit for bit, five- and nine-point, even and odd rings, short and long lines.
+#[test]
+fn flat_defect_is_the_line_by_line_defect() {
+    let mut u = rng(0x2545_f491_4f6c_dd1d);
+    for (nt, nz) in [(3, 3), (8, 17), (11, 7), (15, 17), (60, 17), (4, 31)] {
+        for five in [true, false] {
+            let n = nt * nz;
+            let mut a = Stencil9::<Work> {
+                nt,
+                nz,
+                c: std::array::from_fn(|_| (0..n).map(|_| (2.0 * u() - 1.0) as Work).collect()),
+                five,
+            };
+            if five {
+                for o in [0, 2, 6, 8] {
+                    a.c[o].fill(0.0);
+                }
+            }
+            let x: Vec<Work> = (0..n).map(|_| (2.0 * u() - 1.0) as Work).collect();
+            let b: Vec<Work> = (0..n).map(|_| (2.0 * u() - 1.0) as Work).collect();
+            let mut by_line = vec![0.0; n];
+            for i in 0..nt {
+                a.defect_line(i, &x, &b, &mut by_line);
+            }
+            let bits = |v: &[Work]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let mut flat = vec![Work::NAN; n];
+            a.defect_columns(&x, &b, &mut flat, None);
+            assert_eq!(bits(&flat), bits(&by_line), "{nt} x {nz}, five {five}");
+            for parity in 0..2 {
+                let mut half = vec![Work::NAN; n];
+                a.defect_columns(&x, &b, &mut half, Some(parity));
+                for i in (parity..nt).step_by(2) {
+                    let col = i * nz..(i + 1) * nz;
+                    assert_eq!(
+                        bits(&half[col.clone()]),
+                        bits(&by_line[col]),
+                        "{nt} x {nz}, five {five}, column {i}"
+                    );
+                }
+            }
+        }
+    }
+}
+
 /// The V-cycle's restriction of a defect that is zero on the odd columns (after the zebra
 /// sweep) gives the whole restriction's values bit for bit, whatever the odd columns hold
 /// (it does not read them), for even and odd rings with Dirichlet and cavitated nodes.
