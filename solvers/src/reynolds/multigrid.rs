@@ -345,49 +345,17 @@ impl<T: Real> Stencil9<T> {
         fn above<T>(v: &[T], m: usize) -> &[T] {
             &v[2..2 + m]
         }
-        let (c0, c1, c2, c3, c4, c5, c6, c7, c8) = (
-            inner(c(0), m),
-            inner(c(1), m),
-            inner(c(2), m),
-            inner(c(3), m),
-            inner(c(4), m),
-            inner(c(5), m),
-            inner(c(6), m),
-            inner(c(7), m),
-            inner(c(8), m),
-        );
         let (xw, xp, xe) = (inner(xl[0], m), inner(xl[1], m), inner(xl[2], m));
         let (xp_s, xp_n) = (below(xl[1], m), above(xl[1], m));
-        let (bl, yl) = (&bl[1..1 + m], &mut yl[1..1 + m]);
-        if self.five {
-            for j in 0..m {
-                let s = c4[j] * xp[j]
-                    + c1[j] * xw[j]
-                    + c7[j] * xe[j]
-                    + c3[j] * xp_s[j]
-                    + c5[j] * xp_n[j];
-                yl[j] = bl[j] - s;
-            }
-            return;
-        }
-        let (xw_s, xw_n, xe_s, xe_n) = (
-            below(xl[0], m),
-            above(xl[0], m),
-            below(xl[2], m),
-            above(xl[2], m),
+        let (xw_s, xw_n) = (below(xl[0], m), above(xl[0], m));
+        let (xe_s, xe_n) = (below(xl[2], m), above(xl[2], m));
+        defect_run(
+            std::array::from_fn(|o| inner(c(o), m)),
+            [xw_s, xw, xw_n, xp_s, xp, xp_n, xe_s, xe, xe_n],
+            &bl[1..1 + m],
+            &mut yl[1..1 + m],
+            self.five,
         );
-        for j in 0..m {
-            let s = c4[j] * xp[j]
-                + c1[j] * xw[j]
-                + c7[j] * xe[j]
-                + c3[j] * xp_s[j]
-                + c5[j] * xp_n[j]
-                + c0[j] * xw_s[j]
-                + c2[j] * xw_n[j]
-                + c6[j] * xe_s[j]
-                + c8[j] * xe_n[j];
-            yl[j] = bl[j] - s;
-        }
     }
 
     /// y = b − A x on the columns of `parity` (every column with None): one flat pass over
@@ -417,42 +385,15 @@ impl<T: Real> Stencil9<T> {
             &v[from..from + len]
         }
         let at_shift = |v, d| shifted(v, lo, hi - lo, d);
-        let c = |o: usize| &self.c[o][lo..hi];
-        let (xp, xw, xe) = (
-            at_shift(x, 0),
-            at_shift(x, -(nz as isize)),
-            at_shift(x, nz as isize),
+        let n = nz as isize;
+        defect_run(
+            std::array::from_fn(|o| &self.c[o][lo..hi]),
+            // Offset o = 3 (dθ + 1) + (dz + 1) ([`at`]) is at k + n_z dθ + dz.
+            std::array::from_fn(|o| at_shift(x, n * (o as isize / 3 - 1) + (o as isize % 3 - 1))),
+            &b[lo..hi],
+            &mut y[lo..hi],
+            self.five,
         );
-        let (xp_s, xp_n) = (at_shift(x, -1), at_shift(x, 1));
-        let (bl, yl) = (&b[lo..hi], &mut y[lo..hi]);
-        let (c1, c3, c4, c5, c7) = (c(1), c(3), c(4), c(5), c(7));
-        if self.five {
-            for j in 0..hi - lo {
-                let s = c4[j] * xp[j]
-                    + c1[j] * xw[j]
-                    + c7[j] * xe[j]
-                    + c3[j] * xp_s[j]
-                    + c5[j] * xp_n[j];
-                yl[j] = bl[j] - s;
-            }
-        } else {
-            let (c0, c2, c6, c8) = (c(0), c(2), c(6), c(8));
-            let n = nz as isize;
-            let (xw_s, xw_n) = (at_shift(x, -n - 1), at_shift(x, -n + 1));
-            let (xe_s, xe_n) = (at_shift(x, n - 1), at_shift(x, n + 1));
-            for j in 0..hi - lo {
-                let s = c4[j] * xp[j]
-                    + c1[j] * xw[j]
-                    + c7[j] * xe[j]
-                    + c3[j] * xp_s[j]
-                    + c5[j] * xp_n[j]
-                    + c0[j] * xw_s[j]
-                    + c2[j] * xw_n[j]
-                    + c6[j] * xe_s[j]
-                    + c8[j] * xe_n[j];
-                yl[j] = bl[j] - s;
-            }
-        }
         // The seam columns whole, the other wanted columns' end rows.
         for i in (0..nt).filter(|&i| wanted(i)) {
             if i == 0 || i == nt - 1 {
@@ -508,6 +449,41 @@ impl<T: Real> Stencil9<T> {
     #[inline(always)]
     fn defect(&self, x: &[T], b: &[T], y: &mut [T]) {
         self.defect_columns(x, b, y, None);
+    }
+}
+
+/// y = b − Σ_o c_o x_o over one run of rows (every slice of y's length; `c[o]` the entries and
+/// `x[o]` the values of stencil offset o = [`at`] for those rows): the five-point terms, then
+/// (not `five`) the corners, in this one fixed order — the interior rows of
+/// [`Stencil9::defect_line`] and of [`Stencil9::defect_columns`], which must give the same bits.
+/// One loop without bounds checks, which LLVM vectorizes.
+#[inline(always)]
+fn defect_run<T: Real>(c: [&[T]; 9], x: [&[T]; 9], b: &[T], y: &mut [T], five: bool) {
+    let m = y.len();
+    let c: [&[T]; 9] = c.map(|v| &v[..m]);
+    let x: [&[T]; 9] = x.map(|v| &v[..m]);
+    let b = &b[..m];
+    let [c0, c1, c2, c3, c4, c5, c6, c7, c8] = c;
+    let [xw_s, xw, xw_n, xp_s, xp, xp_n, xe_s, xe, xe_n] = x;
+    if five {
+        for j in 0..m {
+            let s =
+                c4[j] * xp[j] + c1[j] * xw[j] + c7[j] * xe[j] + c3[j] * xp_s[j] + c5[j] * xp_n[j];
+            y[j] = b[j] - s;
+        }
+        return;
+    }
+    for j in 0..m {
+        let s = c4[j] * xp[j]
+            + c1[j] * xw[j]
+            + c7[j] * xe[j]
+            + c3[j] * xp_s[j]
+            + c5[j] * xp_n[j]
+            + c0[j] * xw_s[j]
+            + c2[j] * xw_n[j]
+            + c6[j] * xe_s[j]
+            + c8[j] * xe_n[j];
+        y[j] = b[j] - s;
     }
 }
 
