@@ -153,28 +153,12 @@ impl StepHistory {
         let full_film = density_ratio.mapv(|phi| phi >= 1.0);
         // At the step's own ε: the start is a guess of this very step, which the solver's
         // sensitivity prediction (for an iterate of another ε) must not move.
-        Some(start_film(eccentricity_ratio, density_ratio, full_film))
-    }
-}
-
-/// A start for a film step ([`ReynoldsSolver::solve_step_from`]): the solver reads a start's
-/// ε, φ and switch only, so the rest of a state (the level before, the net outflow, the
-/// boundary volumes: three more whole-grid arrays) is neither copied nor kept.
-fn start_film(
-    eccentricity_ratio: [f64; 2],
-    density_ratio: ndarray::Array2<f64>,
-    full_film: ndarray::Array2<bool>,
-) -> FilmState {
-    FilmState {
-        eccentricity_ratio,
-        density_ratio,
-        full_film,
-        net_outflow: None,
-        previous_level: None,
-        deformation: None,
-        boundary_flow: Vec::new(),
-        boundary_volume: Vec::new(),
-        previous_boundary_volume: None,
+        // Only ε, φ and the switch: the solver reads nothing else of a start.
+        Some(FilmState::film_only(
+            eccentricity_ratio,
+            density_ratio,
+            full_film,
+        ))
     }
 }
 
@@ -305,7 +289,9 @@ impl FilmModel for ReynoldsFilm {
         let (sol, next) = solved?;
         self.last = Some((
             state.eccentricity_ratio,
-            start_film(
+            // A start for the next trial: the solver reads only ε, φ and the switch of it, so
+            // the rest of the state (three more whole-grid arrays) is neither copied nor kept.
+            FilmState::film_only(
                 next.eccentricity_ratio,
                 next.density_ratio.clone(),
                 next.full_film.clone(),

@@ -379,6 +379,30 @@ pub struct FilmState {
     pub previous_boundary_volume: Option<Vec<f64>>,
 }
 
+impl FilmState {
+    /// A state that is a film only: ε, φ and the switch, with no level before, no net outflow,
+    /// no deformation and no boundary volumes — a run's first state
+    /// ([`ReynoldsSolver::initial_state`]) or a step's start, of which the solver reads these
+    /// three alone ([`ReynoldsSolver::solve_step_from`]).
+    pub(crate) fn film_only(
+        eccentricity_ratio: [f64; 2],
+        density_ratio: Array2<f64>,
+        full_film: Array2<bool>,
+    ) -> Self {
+        Self {
+            eccentricity_ratio,
+            density_ratio,
+            full_film,
+            net_outflow: None,
+            previous_level: None,
+            deformation: None,
+            boundary_flow: Vec::new(),
+            boundary_volume: Vec::new(),
+            previous_boundary_volume: None,
+        }
+    }
+}
+
 /// Everything a solve returns (SI units; angles in rad; locations as (θ, z)).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FilmSolution {
@@ -916,17 +940,11 @@ impl ReynoldsSolver {
         let GridParams { n_theta, n_z } = self.params.grid;
         let psi = (self.params.ambient_pressure - self.params.cavitation_pressure)
             / self.params.bulk_modulus;
-        FilmState {
+        FilmState::film_only(
             eccentricity_ratio,
-            density_ratio: Array2::from_elem((n_theta, n_z), 1.0 + psi),
-            full_film: Array2::from_elem((n_theta, n_z), true),
-            net_outflow: None,
-            previous_level: None,
-            deformation: None,
-            boundary_flow: Vec::new(),
-            boundary_volume: Vec::new(),
-            previous_boundary_volume: None,
-        }
+            Array2::from_elem((n_theta, n_z), 1.0 + psi),
+            Array2::from_elem((n_theta, n_z), true),
+        )
     }
 
     /// One implicit time step from `state` (ε and φ at t_n) to `input.eccentricity_ratio` at
