@@ -1661,3 +1661,33 @@ fn a_start_of_another_grid_is_named() {
         );
     }
 }
+
+/// A pivot changes the switch of the infeasible nodes (every one in a block pivot, the first
+/// in a single pivot) and starts each switched node's next solve at ψ = 0, the point where its
+/// two equations agree; every other node keeps its y.
+#[test]
+fn pivot_starts_switched_nodes_at_the_switch_point() {
+    let g = [1.0, 0.0, 1.0, 0.0, 1.0];
+    let g_new = [0.0, 1.0, 1.0, 0.0, 0.0];
+    let y = [-2e-6, 4e-3, 3e-4, -0.2, -1e-7];
+    let mut newton = NewtonCounts::default();
+    // A block pivot: the first pivot of a solve always is one.
+    let mut rule = PivotRule {
+        fewest_infeasible: usize::MAX,
+        block_tries: BLOCK_TRIES,
+    };
+    let (mut gb, mut psi) = (g, y);
+    assert!(!rule.pivot(3, &mut gb, &g_new, &mut psi, &mut newton));
+    assert_eq!(gb, g_new);
+    assert_eq!(psi, [0.0, 0.0, 3e-4, -0.2, 0.0]);
+    // No block tries left and no fewer infeasible nodes: Murty's single pivot, least index.
+    let mut rule = PivotRule {
+        fewest_infeasible: 3,
+        block_tries: 0,
+    };
+    let (mut gs, mut psi) = (g, y);
+    assert!(rule.pivot(3, &mut gs, &g_new, &mut psi, &mut newton));
+    assert_eq!(gs, [0.0, 0.0, 1.0, 0.0, 1.0]);
+    assert_eq!(psi, [0.0, 4e-3, 3e-4, -0.2, -1e-7]);
+    assert_eq!(newton.single_pivots, 1);
+}
