@@ -89,14 +89,18 @@
 //!    and dropped: the full step, which briefly raises the complementarity violation of nodes
 //!    about to switch, was cut into small steps and the solve stalled — on the compressor rod
 //!    bearing 100 iterations without convergence, against ≤ 15 with full steps.) A node that
-//!    changes state starts the next solve at ψ = 0, where its two equations agree (p = p_cav
-//!    and φ = 1), not at its y, which is of the other meaning: a cavitated node's y = φ − 1 of
-//!    a few 10⁻³ (on the warm-step bench up to 0.006) read as a pressure is β y of several MPa
-//!    (9 MPa at β = 1.5 GPa). This changes only where the next Krylov solve starts (and a
-//!    steady solve's pseudo-time anchor), not the system it solves; measured on the warm-step
-//!    bench (2026-11-29), the start residual after the pivot fell 120× (1.5 → 0.013 of the
-//!    flux scale) and its solve took 5 Krylov iterations instead of 6; a 360-step march of
-//!    that film 7.7 instead of 9.6 per step.
+//!    turns full starts the next solve at ψ = 0, where its two equations agree (p = p_cav and
+//!    φ = 1), not at its y, which is of the other meaning: a cavitated node's y = φ − 1 of a
+//!    few 10⁻³ (on the warm-step bench up to 0.006) read as a pressure is β y of several MPa
+//!    (9 MPa at β = 1.5 GPa). A node that turns cavitated keeps its y, a small negative
+//!    pressure that is a φ just below 1 (zeroing it too, whose H(0) is "full", made the next
+//!    solve's switch checks see it as wrong: +5 % instructions on the inverse cycle). This
+//!    changes only where the next Krylov solve starts (and a steady solve's pseudo-time
+//!    anchor), not the system it solves. Measured (callgrind, 2026-11-29): the warm-step
+//!    bench's start residual after the pivot fell 120× (1.5 → 0.013 of the flux scale), its
+//!    step took 7 Krylov iterations instead of 8 (−6.5 % instructions); a 360-step march of
+//!    that film 7.7 instead of 9.6 per step; the timing report's default inverse cycle 4.0
+//!    instead of 4.4 per film step (−4.5 % instructions).
 //!
 //! At the returned ψ, g = H(ψ) and max_k |R_k(ψ)| ≤ `tolerance` × the flux scale (the largest
 //! driving flux of a row, `Stencil::residual`): every discrete mass balance holds to the
@@ -2341,8 +2345,8 @@ impl PivotRule {
     /// The active-set update of a Newton step whose answer's switch `g_new` differs from `g`
     /// at `infeasible` nodes: a block pivot (every infeasible node changes state, the full
     /// semismooth Newton step) or Murty's least-index single pivot (module docs). A node that
-    /// changes state starts the next solve at ψ = 0 in `psi` (module docs, step 3). Returns
-    /// true after a single pivot, whose next solve must be tight.
+    /// turns full starts the next solve at ψ = 0 in `psi` (module docs, step 3). Returns true
+    /// after a single pivot, whose next solve must be tight.
     fn pivot(
         &mut self,
         infeasible: usize,
@@ -2355,14 +2359,18 @@ impl PivotRule {
             Pivot::Block => {
                 for ((x, g), g_new) in psi.iter_mut().zip(g.iter_mut()).zip(g_new) {
                     if *g != *g_new {
-                        *x = 0.0;
+                        if *g_new == 1.0 {
+                            *x = 0.0;
+                        }
                         *g = *g_new;
                     }
                 }
                 false
             }
             Pivot::Single(k) => {
-                psi[k] = 0.0;
+                if g_new[k] == 1.0 {
+                    psi[k] = 0.0;
+                }
                 g[k] = g_new[k];
                 newton.single_pivots += 1;
                 true

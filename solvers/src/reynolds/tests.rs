@@ -1663,8 +1663,8 @@ fn a_start_of_another_grid_is_named() {
 }
 
 /// A pivot changes the switch of the infeasible nodes (every one in a block pivot, the first
-/// in a single pivot) and starts each switched node's next solve at ψ = 0, the point where its
-/// two equations agree; every other node keeps its y.
+/// in a single pivot) and starts each node that turns full at ψ = 0, the point where its two
+/// equations agree; a node that turns cavitated, and every other node, keeps its y.
 #[test]
 fn pivot_starts_switched_nodes_at_the_switch_point() {
     let g = [1.0, 0.0, 1.0, 0.0, 1.0];
@@ -1679,7 +1679,7 @@ fn pivot_starts_switched_nodes_at_the_switch_point() {
     let (mut gb, mut psi) = (g, y);
     assert!(!rule.pivot(3, &mut gb, &g_new, &mut psi, &mut newton));
     assert_eq!(gb, g_new);
-    assert_eq!(psi, [0.0, 0.0, 3e-4, -0.2, 0.0]);
+    assert_eq!(psi, [-2e-6, 0.0, 3e-4, -0.2, -1e-7]);
     // No block tries left and no fewer infeasible nodes: Murty's single pivot, least index.
     let mut rule = PivotRule {
         fewest_infeasible: 3,
@@ -1688,6 +1688,16 @@ fn pivot_starts_switched_nodes_at_the_switch_point() {
     let (mut gs, mut psi) = (g, y);
     assert!(rule.pivot(3, &mut gs, &g_new, &mut psi, &mut newton));
     assert_eq!(gs, [0.0, 0.0, 1.0, 0.0, 1.0]);
-    assert_eq!(psi, [0.0, 4e-3, 3e-4, -0.2, -1e-7]);
-    assert_eq!(newton.single_pivots, 1);
+    assert_eq!(psi, y);
+    // The least index turning full.
+    let mut rule = PivotRule {
+        fewest_infeasible: 2,
+        block_tries: 0,
+    };
+    let (mut gs, mut psi) = ([1.0, 0.0, 1.0, 0.0, 1.0], y);
+    let g_new = [1.0, 1.0, 1.0, 0.0, 0.0];
+    assert!(rule.pivot(2, &mut gs, &g_new, &mut psi, &mut newton));
+    assert_eq!(gs, [1.0, 1.0, 1.0, 0.0, 1.0]);
+    assert_eq!(psi, [-2e-6, 0.0, 3e-4, -0.2, -1e-7]);
+    assert_eq!(newton.single_pivots, 2);
 }
