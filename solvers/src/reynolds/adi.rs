@@ -267,6 +267,7 @@ fn precondition(
 /// floating-point operations); it was ~40 % of the Krylov solve's own time (perf, 120 × 31).
 /// The eight chains vectorize and are, if anything, more accurate (the error bound of
 /// blocked summation). The order is fixed, so the result does not depend on the machine.
+#[inline(always)]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     debug_assert_eq!(a.len(), b.len());
     let mut acc = [0.0f64; 8];
@@ -355,7 +356,45 @@ pub(crate) struct KrylovStop {
 /// says. `preconditioner` chooses the ADI sweeps or the multigrid V-cycle; `switch` (g of the
 /// frozen system) lets the multigrid keep the cavitated nodes out of its coarse space
 /// (`multigrid` module docs; the ADI ignores it) and is what `stop.switch_check` compares with.
+/// With AVX2 when the CPU has it: the same operations in the same order on wider vectors (no
+/// fused multiply-add is enabled), so both copies give the same bits, as the V-cycle's
+/// ([`crate::reynolds::multigrid`]) and the line solves' ([`crate::tridiagonal`]).
 pub(crate) fn solve_krylov(
+    grid: &Grid,
+    st: &Stencil,
+    x: &mut [f64],
+    stop: KrylovStop,
+    preconditioner: Preconditioner,
+    switch: Option<&[f64]>,
+    ws: &mut AdiWorkspace,
+) -> Result<KrylovInfo, ReynoldsError> {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2 (checked just above), the only requirement of calling
+        // a function compiled with `target_feature(enable = "avx2")`.
+        return unsafe { solve_krylov_avx2(grid, st, x, stop, preconditioner, switch, ws) };
+    }
+    solve_krylov_generic(grid, st, x, stop, preconditioner, switch, ws)
+}
+
+/// [`solve_krylov_generic`] compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn solve_krylov_avx2(
+    grid: &Grid,
+    st: &Stencil,
+    x: &mut [f64],
+    stop: KrylovStop,
+    preconditioner: Preconditioner,
+    switch: Option<&[f64]>,
+    ws: &mut AdiWorkspace,
+) -> Result<KrylovInfo, ReynoldsError> {
+    solve_krylov_generic(grid, st, x, stop, preconditioner, switch, ws)
+}
+
+/// [`solve_krylov`] for any CPU.
+#[inline(always)]
+fn solve_krylov_generic(
     grid: &Grid,
     st: &Stencil,
     x: &mut [f64],
@@ -458,6 +497,7 @@ pub(crate) fn solve_krylov(
 
 /// Whether H(x) differs from the switch `g` at an unknown node (H = 1 where x ≥ 0, else 0:
 /// the semismooth Newton's `set_switch`).
+#[inline(always)]
 fn switch_disagrees(grid: &Grid, x: &[f64], g: &[f64]) -> bool {
     x.iter()
         .zip(g)
@@ -491,6 +531,7 @@ enum Cycle {
 /// end once it agrees below half the last level). Counts the iterations.
 // Crate-internal, called once by `solve_krylov` with its own state.
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 fn gmres_cycle(
     grid: &Grid,
     st: &Stencil,
@@ -572,6 +613,7 @@ fn gmres_cycle(
 /// Gram–Schmidt (one pass over w per basis vector: the update by v_i and the dot product with
 /// the next vector, or w · w after the last, share the pass), H_{i,j} and H_{j+1,j} = ‖w‖
 /// stored, w / ‖w‖ kept as v_{j+1}. Returns ‖w‖ (0: the Krylov space is exhausted).
+#[inline(always)]
 fn arnoldi_column(ws: &mut AdiWorkspace, jj: usize, mut w: Vec<f64>) -> f64 {
     let mut hij = dot(&w, &ws.v[0]);
     for ii in 0..=jj {
@@ -598,6 +640,7 @@ fn arnoldi_column(ws: &mut AdiWorkspace, jj: usize, mut w: Vec<f64>) -> f64 {
 /// Column j of H brought to upper-triangular form: the earlier Givens rotations applied, a new
 /// one zeroing H_{j+1,j}, and the same rotation applied to the residual vector g (whose
 /// |g_{j+1}| is the new residual 2-norm).
+#[inline(always)]
 fn rotate_column(ws: &mut AdiWorkspace, jj: usize) {
     for ii in 0..jj {
         let (a, b) = (ws.hess[ii * RESTART + jj], ws.hess[(ii + 1) * RESTART + jj]);
@@ -617,6 +660,7 @@ fn rotate_column(ws: &mut AdiWorkspace, jj: usize) {
 
 /// The end of a GMRES cycle of `used` columns: back substitution R y = g, then x += Z y
 /// (right preconditioning: the preconditioned directions z_i).
+#[inline(always)]
 fn add_correction(ws: &AdiWorkspace, used: usize, x: &mut [f64]) {
     let mut yv = [0.0; RESTART];
     for ii in (0..used).rev() {

@@ -133,6 +133,7 @@ impl Stencil {
     /// rows of an axial line without their missing neighbour. The end rows are peeled off so
     /// that the interior loop has no branch and vectorizes; the order of the operations, and so
     /// every bit of y, is that of the plain loop (Rust contracts nothing into fused multiply-adds).
+    #[inline(always)]
     pub fn apply(&self, grid: &Grid, x: &[f64], y: &mut [f64]) {
         self.product::<false>(grid, x, &[], y);
     }
@@ -190,6 +191,7 @@ impl Stencil {
     /// couplings to Dirichlet nodes (supply and ambient). It is independent of the stiff
     /// β-sized internal couplings, so `max |r| ≤ tol · scale` bounds the mass error of every
     /// node against the flows that actually pass through the film.
+    #[inline(always)]
     pub fn residual(&self, grid: &Grid, x: &[f64], r: &mut [f64]) -> (f64, f64) {
         let (nt, nz) = (grid.n_theta, grid.n_z);
         let mut rmax: f64 = 0.0;

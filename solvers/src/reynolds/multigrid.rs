@@ -1262,8 +1262,38 @@ impl Multigrid {
     /// θ-columns and nowhere else (a Newton step that switched a few nodes) is updated in those
     /// columns ([`Multigrid::update_columns`]): the rebuilt hierarchy, bit for bit, at a
     /// fraction of the cost (compressor-size inverse cycle: 346 of 790 rebuilds, −4.2 %
-    /// instructions of the run).
+    /// instructions of the run). With AVX2 when the CPU has it (the same bits, as
+    /// [`Multigrid::vcycle`]).
     pub(crate) fn setup(
+        &mut self,
+        grid: &Grid,
+        st: &Stencil,
+        switch: Option<&[f64]>,
+    ) -> Result<Hierarchy, ReynoldsError> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 (checked just above), the only requirement of
+            // calling a function compiled with `target_feature(enable = "avx2")`.
+            return unsafe { self.setup_avx2(grid, st, switch) };
+        }
+        self.setup_generic(grid, st, switch)
+    }
+
+    /// [`Multigrid::setup_generic`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn setup_avx2(
+        &mut self,
+        grid: &Grid,
+        st: &Stencil,
+        switch: Option<&[f64]>,
+    ) -> Result<Hierarchy, ReynoldsError> {
+        self.setup_generic(grid, st, switch)
+    }
+
+    /// [`Multigrid::setup`] for any CPU.
+    #[inline(always)]
+    fn setup_generic(
         &mut self,
         grid: &Grid,
         st: &Stencil,
@@ -1277,7 +1307,7 @@ impl Multigrid {
         if fit == Hierarchy::Built {
             match self.changed_columns(grid, st, switch) {
                 Some(columns) => self.update_columns(grid, st, switch, &columns)?,
-                None => self.rebuild(grid, st, switch)?,
+                None => self.rebuild_generic(grid, st, switch)?,
             }
         }
         Ok(fit)
@@ -1339,6 +1369,7 @@ impl Multigrid {
     /// comes from the same operations on the same inputs as in [`Multigrid::rebuild`], and
     /// every kept one had its inputs unchanged: the hierarchy is the rebuilt one bit for bit
     /// (tested), at the cost of the changed columns instead of all.
+    #[inline(always)]
     fn update_columns(
         &mut self,
         grid: &Grid,
@@ -1425,8 +1456,38 @@ impl Multigrid {
         Ok(())
     }
 
-    /// Builds the hierarchy for `st` whatever the previous one was.
+    /// Builds the hierarchy for `st` whatever the previous one was (with AVX2 when the CPU has
+    /// it, the same bits).
     pub(crate) fn rebuild(
+        &mut self,
+        grid: &Grid,
+        st: &Stencil,
+        switch: Option<&[f64]>,
+    ) -> Result<(), ReynoldsError> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 (checked just above), the only requirement of
+            // calling a function compiled with `target_feature(enable = "avx2")`.
+            return unsafe { self.rebuild_avx2(grid, st, switch) };
+        }
+        self.rebuild_generic(grid, st, switch)
+    }
+
+    /// [`Multigrid::rebuild_generic`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn rebuild_avx2(
+        &mut self,
+        grid: &Grid,
+        st: &Stencil,
+        switch: Option<&[f64]>,
+    ) -> Result<(), ReynoldsError> {
+        self.rebuild_generic(grid, st, switch)
+    }
+
+    /// [`Multigrid::rebuild`] for any CPU.
+    #[inline(always)]
+    fn rebuild_generic(
         &mut self,
         grid: &Grid,
         st: &Stencil,
@@ -1529,6 +1590,7 @@ impl Multigrid {
     /// exact), so the cycle's values sit near 1 whatever the size of r; entries below
     /// [`DROP_BELOW`] of max|r| are dropped (they could reach the subnormal range of `f32`,
     /// which x86 cores compute slowly, and lie far below the cycle's own rounding).
+    #[inline(always)]
     pub(crate) fn apply(&mut self, r: &[f64], z: &mut [f64]) -> Result<(), ReynoldsError> {
         let rmax = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         if rmax == 0.0 {
