@@ -394,7 +394,7 @@ fn solve_krylov_avx2(
 
 /// [`solve_krylov`] for any CPU.
 #[inline(always)]
-fn solve_krylov_generic(
+pub(crate) fn solve_krylov_generic(
     grid: &Grid,
     st: &Stencil,
     x: &mut [f64],
