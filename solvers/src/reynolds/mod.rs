@@ -63,7 +63,8 @@
 //! cavitated one with y > 0). A piecewise-linear problem is solved exactly once no node is
 //! infeasible (finite termination). Each iteration
 //!
-//! 1. solves A(g) y = b by the iterative solver of `adi`, started from the last y, to
+//! 1. solves A(g) y = b by the iterative solver of `adi`, started from the last y (a node the
+//!    last pivot turned full from ψ = 0, step 3), to
 //!    `tolerance` — but looks at its iterate on the way: from a residual of 1e-3 on
 //!    (`SWITCH_CHECK_FROM` × the loose level 10⁵ × `tolerance`, at most 1e-5) it compares the
 //!    iterate's switch H(y) with g after every Krylov iteration and stops at the first
