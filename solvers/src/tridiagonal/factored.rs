@@ -149,6 +149,16 @@ impl<T: Real> InterleavedFactors<T> {
     pub fn round_from(&mut self, f: &InterleavedFactors) -> Result<(), TridiagonalError> {
         let n = f.m * f.lines;
         self.resize(f.kind, f.m, f.lines, n);
+        self.round_all_from(f)
+    }
+
+    /// Every factor of `f` (of this shape) rounded into this factorization, then checked:
+    /// flat passes that vectorize; only when a check fails are the lines checked one by one,
+    /// for the error of the first failing line and row (as [`check_rounded_lane`] in line
+    /// order gives it).
+    ///
+    /// [`check_rounded_lane`]: Self::check_rounded_lane
+    fn round_all_from(&mut self, f: &InterleavedFactors) -> Result<(), TridiagonalError> {
         let round = |dst: &mut [T], src: &[f64]| {
             for (d, s) in dst.iter_mut().zip(src) {
                 *d = T::from_f64(*s);
@@ -160,8 +170,22 @@ impl<T: Real> InterleavedFactors<T> {
         round(&mut self.fill, &f.fill);
         round(&mut self.carried, &f.carried);
         round(&mut self.d_star, &f.d_star);
-        for l in 0..f.lines {
-            self.check_rounded_lane(f, l)?;
+        let periodic = f.kind == Kind::Periodic;
+        let rows = if periodic { f.m - 1 } else { f.m };
+        let usable = |v: T| (v != T::ZERO) & v.finite();
+        let mut ok = true;
+        for &r in &self.recip[..rows * f.lines] {
+            ok &= usable(r);
+        }
+        if periodic {
+            for &d in &self.d_star[..f.lines] {
+                ok &= usable(d);
+            }
+        }
+        if !ok {
+            for l in 0..f.lines {
+                self.check_rounded_lane(f, l)?;
+            }
         }
         Ok(())
     }
@@ -200,8 +224,12 @@ impl<T: Real> InterleavedFactors<T> {
 impl<T: Real> InterleavedFactors<T> {
     /// The lines `lanes` of this rounded factorization become those of `f` rounded to `T`, as
     /// [`round_from`](Self::round_from) rounds them (the same checks); the other lines keep
-    /// theirs. `f` must have this factorization's kind and shape (else, or on a check that
-    /// fails, the factorization is empty and this is an error).
+    /// their values, provided they are still those of `f` this factorization was last rounded
+    /// from (`f` refactored in `lanes` only since, as [`refactor_lanes`] does): they are
+    /// rounded again, to the same bits. `f` must have this factorization's kind and shape
+    /// (else, or on a check that fails, the factorization is empty and this is an error).
+    ///
+    /// [`refactor_lanes`]: InterleavedFactors::refactor_lanes
     pub fn round_lanes_from(
         &mut self,
         f: &InterleavedFactors,
@@ -222,6 +250,13 @@ impl<T: Real> InterleavedFactors<T> {
                 rhs: 0,
                 x: 0,
             });
+        }
+        if 2 * lanes.len() >= f.lines {
+            // The other lines' factors are those this factorization was rounded from last:
+            // rounded again they give the same values, so when half the lines or more are
+            // asked for (the circumferential lines of a hierarchy update), one flat pass over
+            // every line, which vectorizes, is cheaper than the strided per-line loops.
+            return self.round_all_from(f);
         }
         for &l in lanes {
             for i in 0..f.m {
@@ -269,10 +304,52 @@ impl InterleavedFactors {
         let n = sizes_ok(m, lines, sub, diag, sup, 1)?;
         self.resize(Kind::Dirichlet, m, lines, n);
         self.sub.copy_from_slice(sub);
+        if self.factor_dirichlet_batched(sub, diag, sup) {
+            return Ok(());
+        }
+        // A pivot failed: the error of the first failing line and row, line by line.
         for l in 0..lines {
             self.factor_dirichlet_lane(l, sub, diag, sup)?;
         }
         Ok(())
+    }
+
+    /// Every line of a Dirichlet factorization of this shape at once, row by row with the
+    /// lines innermost (the interleaved storage: one contiguous run per row, which vectorizes,
+    /// and the rows' divisions of different lines overlap instead of waiting on each other).
+    /// Each line does the operations of [`factor_dirichlet_lane`](Self::factor_dirichlet_lane)
+    /// in its order (the same bits); returns whether every pivot passed its check (if not, the
+    /// factors are garbage and the caller reports the error line by line).
+    fn factor_dirichlet_batched(&mut self, sub: &[f64], diag: &[f64], sup: &[f64]) -> bool {
+        let (m, lines) = (self.m, self.lines);
+        let mut ok = true;
+        for l in 0..lines {
+            let a0 = if m > 1 { sup[l] } else { 0.0 };
+            let d0 = diag[l];
+            ok &= pivot_ok(d0, d0.abs() + a0.abs());
+            let r = 1.0 / d0;
+            self.recip[l] = r;
+            self.upper[l] = a0 * r;
+        }
+        for i in 1..m {
+            let row = i * lines..(i + 1) * lines;
+            let (done, rest) = self.upper.split_at_mut(i * lines);
+            let (u_prev, upper) = (&done[(i - 1) * lines..], &mut rest[..lines]);
+            let recip = &mut self.recip[row.clone()];
+            let (b, d) = (&sub[row.clone()], &diag[row.clone()]);
+            let a = &sup[row];
+            let last_row = i + 1 == m;
+            for l in 0..lines {
+                // The last row has no super-diagonal (its `sup` entry is not read).
+                let a = if last_row { 0.0 } else { a[l] };
+                let pivot = d[l] - b[l] * u_prev[l];
+                ok &= pivot_ok(pivot, b[l].abs() + d[l].abs() + a.abs());
+                let r = 1.0 / pivot;
+                recip[l] = r;
+                upper[l] = a * r;
+            }
+        }
+        ok
     }
 
     /// Line `l` of a Dirichlet factorization of this shape, from the interleaved coefficients.
@@ -386,10 +463,90 @@ impl InterleavedFactors {
         let n = sizes_ok(m, lines, sub, diag, sup, 3)?;
         self.resize(Kind::Periodic, m, lines, n);
         self.sub.copy_from_slice(sub);
+        if self.factor_periodic_batched(sub, diag, sup) {
+            return Ok(());
+        }
+        // A pivot failed: the error of the first failing line and row, line by line.
         for l in 0..lines {
             self.factor_periodic_lane(l, sub, diag, sup)?;
         }
         Ok(())
+    }
+
+    /// Every line of a periodic factorization of this shape (m ≥ 3) at once, rows outermost and
+    /// lines innermost, as [`factor_dirichlet_batched`](Self::factor_dirichlet_batched); each
+    /// line does the operations of [`factor_periodic_lane`](Self::factor_periodic_lane) in its
+    /// order (the same bits). Returns whether every pivot passed its check.
+    fn factor_periodic_batched(&mut self, sub: &[f64], diag: &[f64], sup: &[f64]) -> bool {
+        let (m, lines) = (self.m, self.lines);
+        let last = m - 1;
+        let last_row = last * lines..m * lines;
+        let (b_last, d_last, a_last) = (
+            &sub[last_row.clone()],
+            &diag[last_row.clone()],
+            &sup[last_row],
+        );
+        let mut ok = true;
+        // Per line: the last row's scale and flush level, the running carried entry and d*.
+        let mut scale_last = vec![0.0; lines];
+        let mut carried_tol = vec![0.0; lines];
+        let mut carried = vec![0.0; lines];
+        for l in 0..lines {
+            let (b, d, a) = (sub[l], diag[l], sup[l]);
+            ok &= pivot_ok(d, b.abs() + d.abs() + a.abs());
+            let r = 1.0 / d;
+            let (u, f) = (a * r, b * r);
+            self.recip[l] = r;
+            self.upper[l] = u;
+            self.fill[l] = f;
+            scale_last[l] = b_last[l].abs() + d_last[l].abs() + a_last[l].abs();
+            carried_tol[l] = FLUSH_RTOL * scale_last[l];
+            self.carried[l] = a_last[l];
+            self.d_star[l] = d_last[l] - a_last[l] * f;
+            carried[l] = flush(-a_last[l] * u, carried_tol[l]);
+        }
+        for i in 1..last {
+            let row = i * lines..(i + 1) * lines;
+            let (b, d, a) = (&sub[row.clone()], &diag[row.clone()], &sup[row.clone()]);
+            let (done_u, rest_u) = self.upper.split_at_mut(i * lines);
+            let (u_prev, upper) = (&done_u[(i - 1) * lines..], &mut rest_u[..lines]);
+            let (done_f, rest_f) = self.fill.split_at_mut(i * lines);
+            let (f_prev, fill) = (&done_f[(i - 1) * lines..], &mut rest_f[..lines]);
+            let recip = &mut self.recip[row.clone()];
+            let carried_row = &mut self.carried[row];
+            let d_star = &mut self.d_star[..lines];
+            if i < last - 1 {
+                for l in 0..lines {
+                    let pivot = d[l] - b[l] * u_prev[l];
+                    ok &= pivot_ok(pivot, b[l].abs() + d[l].abs() + a[l].abs());
+                    let r = 1.0 / pivot;
+                    let u = a[l] * r;
+                    let f = flush(-(b[l] * f_prev[l]) * r, FLUSH_RTOL);
+                    recip[l] = r;
+                    upper[l] = u;
+                    fill[l] = f;
+                    carried_row[l] = carried[l];
+                    d_star[l] -= carried[l] * f;
+                    carried[l] = flush(-carried[l] * u, carried_tol[l]);
+                }
+            } else {
+                // Row m − 2: its fill-in joins the super-diagonal entry of the last column.
+                for l in 0..lines {
+                    let pivot = d[l] - b[l] * u_prev[l];
+                    ok &= pivot_ok(pivot, b[l].abs() + d[l].abs() + a[l].abs());
+                    let r = 1.0 / pivot;
+                    let f_m2 = (a[l] - b[l] * f_prev[l]) * r;
+                    recip[l] = r;
+                    upper[l] = 0.0;
+                    fill[l] = f_m2;
+                    carried[l] += b_last[l];
+                    carried_row[l] = carried[l];
+                    d_star[l] -= carried[l] * f_m2;
+                    ok &= pivot_ok(d_star[l], scale_last[l]);
+                }
+            }
+        }
+        ok
     }
 
     /// Line `l` of a periodic factorization of this shape (m ≥ 3), from the interleaved
