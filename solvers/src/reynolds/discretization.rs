@@ -130,9 +130,11 @@ impl Stencil {
     /// y = A x.
     ///
     /// Per row the sum is ((p x_P + w x_W) + e x_E) + s x_S + n x_N, left to right, the two end
-    /// rows of an axial line without their missing neighbour. The end rows are peeled off so
-    /// that the interior loop has no branch and vectorizes; the order of the operations, and so
-    /// every bit of y, is that of the plain loop (Rust contracts nothing into fused multiply-adds).
+    /// rows of an axial line without their missing neighbour. The θ-columns 1 … n_θ − 2 run as
+    /// one flat loop without branches, which vectorizes; their end rows and the seam columns
+    /// 0 and n_θ − 1 are then redone row by row. The order of the operations, and so every bit
+    /// of y, is that of the plain loop (Rust contracts nothing into fused multiply-adds; test
+    /// `flat_matrix_product_is_the_row_by_row_product`).
     #[inline(always)]
     pub fn apply(&self, grid: &Grid, x: &[f64], y: &mut [f64]) {
         self.product::<false>(grid, x, &[], y);

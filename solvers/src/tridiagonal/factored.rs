@@ -26,7 +26,11 @@
 //! recurrences, the solve phase the right-hand-side part, with the stored values in place of
 //! the recomputed ones. So a factored solve returns, bit for bit, what the one-shot solvers
 //! return (tested with `==` on the bits). The solve phase uses the chunk-of-lanes scheme and
-//! the run-time AVX2 choice of [`super::batch`]; neither changes a bit.
+//! the run-time AVX2 choice of [`super::batch`]; neither changes a bit. The factor phase of a
+//! whole batch runs row by row with the lines innermost (a contiguous run per row, so the
+//! divisions of different lines overlap instead of each line waiting on its own chain); each
+//! line still does its operations in its own order. Re-factoring a few lines
+//! ([`InterleavedFactors::refactor_lanes`]) goes line by line.
 //!
 //! ## Errors
 //!
