@@ -738,6 +738,9 @@ struct MgLevel {
     attached_defect: Vec<Work>,
     /// The diagonals [`MgLevel::eliminate_attached`] changed, to restore.
     saved_diagonals: Vec<(usize, f64)>,
+    /// The axial lines' coefficients staged for their factorization (sub-, main and
+    /// super-diagonal, interleaved; kept between set-ups to save the allocations).
+    staging: [Vec<f64>; 3],
 }
 
 /// A cavitated node m whose row couples it to the full node k of an axial line in both
@@ -789,18 +792,24 @@ impl MgLevel {
                 .map_err(|e| line_error(level, "circumferential", e))?;
         }
         let half = nt.div_ceil(2) * nz;
-        let mut sub = vec![0.0; half];
-        let mut diag = vec![0.0; half];
-        let mut sup = vec![0.0; half];
+        let [mut sub, mut diag, mut sup] = std::mem::take(&mut self.staging);
+        for v in [&mut sub, &mut diag, &mut sup] {
+            v.resize(half, 0.0);
+        }
         for parity in 0..2 {
             let lines = self.lines_of(parity);
             self.stage_axial(level, parity, 0..lines, &mut sub, &mut diag, &mut sup);
             let m = lines * nz;
-            self.axial64[parity]
+            let factored = self.axial64[parity]
                 .factor_dirichlet(nz, lines, &sub[..m], &diag[..m], &sup[..m])
                 .and_then(|()| self.axial[parity].round_from(&self.axial64[parity]))
-                .map_err(|e| line_error(level, "axial", e))?;
+                .map_err(|e| line_error(level, "axial", e));
+            if factored.is_err() {
+                self.staging = [sub, diag, sup];
+                return factored;
+            }
         }
+        self.staging = [sub, diag, sup];
         self.line_rhs.clear();
         self.line_rhs.resize(half, 0.0);
         self.line_sol.clear();
@@ -956,10 +965,12 @@ impl MgLevel {
                 .map_err(|e| line_error(level, "circumferential", e))?;
         }
         let half = nt.div_ceil(2) * nz;
-        let mut sub = vec![0.0; half];
-        let mut diag = vec![0.0; half];
-        let mut sup = vec![0.0; half];
+        let [mut sub, mut diag, mut sup] = std::mem::take(&mut self.staging);
+        for v in [&mut sub, &mut diag, &mut sup] {
+            v.resize(half, 0.0);
+        }
         let mut lanes = Vec::new();
+        let mut refactored = Ok(());
         for parity in 0..2 {
             let lines = self.lines_of(parity);
             lanes.clear();
@@ -967,6 +978,8 @@ impl MgLevel {
             if lanes.is_empty() {
                 continue;
             }
+            // Only the staged lanes are read (`refactor_lanes`): the others' old values in the
+            // kept staging do not matter.
             self.stage_axial(
                 level,
                 parity,
@@ -976,12 +989,16 @@ impl MgLevel {
                 &mut sup,
             );
             let m = lines * nz;
-            self.axial64[parity]
+            refactored = self.axial64[parity]
                 .refactor_lanes(&sub[..m], &diag[..m], &sup[..m], &lanes)
                 .and_then(|()| self.axial[parity].round_lanes_from(&self.axial64[parity], &lanes))
-                .map_err(|e| line_error(level, "axial", e))?;
+                .map_err(|e| line_error(level, "axial", e));
+            if refactored.is_err() {
+                break;
+            }
         }
-        Ok(())
+        self.staging = [sub, diag, sup];
+        refactored
     }
 
     /// The cycle's operator and mask: `a` and `mask` rounded to [`Work`].
